@@ -1,0 +1,259 @@
+"""The counting evaluation wrapper placed between every solver and every problem.
+
+Solvers never see a `Problem`; they see an `Oracle`, which evaluates the problem and
+measures the cost:
+
+* ``nfg`` -- number of *distinct points* at which the oracle (value, gradient,
+  constraints or their Jacobians) was evaluated. A solver that asks for f and then
+  for grad f at the same point is counted once (thesis Section 2.5: N^fg counts
+  "function-cum-gradient-vector evaluations").
+* ``nf``, ``ng`` -- executions of the objective and of its gradient. Finite-difference
+  gradients add their function evaluations to ``nf``.
+* ``nc``, ``nj`` -- executions of the constraint functions (inequalities and
+  equalities together) and of their Jacobians (finite differences add to ``nc``).
+* ``nh`` -- Hessian evaluations reported by second-order adapters (Ipopt).
+
+No solver reports its own count: the numbers in every `Result` come from here.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import time
+from typing import Any
+
+import numpy as np
+
+from ._finite_differences import fd_gradient, fd_jacobian
+from ._problem import Problem, ProblemError
+
+__all__ = ["Oracle", "BudgetExhausted", "Counts"]
+
+
+class BudgetExhausted(Exception):
+    """Raised by the oracle when a solver exceeds its evaluation budget (max_nfg)."""
+
+
+class Counts(dict):
+    """Evaluation counts: nfg, nf, ng, nc, nj, nh."""
+
+
+def _key(x: np.ndarray) -> bytes:
+    return hashlib.blake2b(np.ascontiguousarray(x, dtype=float).tobytes(), digest_size=16).digest()
+
+
+class Oracle:
+    """Counting, caching access to a `Problem` for solvers.
+
+    Parameters
+    ----------
+    problem : Problem
+    max_nfg : int, optional
+        Budget of distinct evaluation points; exceeding it raises `BudgetExhausted`
+        (the solve front door turns that into status ``max_iter``).
+    """
+
+    def __init__(self, problem: Problem, max_nfg: int | None = None):
+        if not isinstance(problem, Problem):
+            raise TypeError(f"Oracle needs a Problem, got {type(problem).__name__}")
+        self.problem = problem
+        self.max_nfg = max_nfg
+        self.nfg = self.nf = self.ng = self.nc = self.nj = self.nh = 0
+        self.time_in_evals = 0.0
+        self._seen: set[bytes] = set()
+        self._last_key: bytes | None = None
+        self._cache: dict[str, Any] = {}
+        # history rows: [nfg, f, max_violation] for each distinct point, filled as known
+        self._hist: list[list[float]] = []
+        self.last_x: np.ndarray = problem.x0.copy()
+
+    # ------------------------------------------------------------------ structure
+    @property
+    def n(self) -> int:
+        return self.problem.n
+
+    @property
+    def x0(self) -> np.ndarray:
+        return self.problem.x0.copy()
+
+    @property
+    def lower(self) -> np.ndarray:
+        return self.problem.lower
+
+    @property
+    def upper(self) -> np.ndarray:
+        return self.problem.upper
+
+    @property
+    def n_ineq(self) -> int:
+        return self.problem.n_ineq
+
+    @property
+    def n_eq(self) -> int:
+        return self.problem.n_eq
+
+    @property
+    def has_bounds(self) -> bool:
+        return self.problem.has_bounds
+
+    @property
+    def name(self) -> str:
+        return self.problem.name
+
+    # --------------------------------------------------------------- bookkeeping
+    def _enter(self, x: Any) -> np.ndarray:
+        x = np.array(x, dtype=float).reshape(-1)
+        if x.size != self.n:
+            raise ProblemError(f"{self.name}: point has {x.size} components, expected n = {self.n}")
+        k = _key(x)
+        if k != self._last_key:
+            self._cache = {}
+            self._last_key = k
+            if k not in self._seen:
+                if self.max_nfg is not None and self.nfg >= self.max_nfg:
+                    raise BudgetExhausted(f"evaluation budget of {self.max_nfg} points exhausted")
+                self._seen.add(k)
+                self.nfg += 1
+                bviol = 0.0
+                if self.has_bounds:
+                    bviol = max(float(np.max(self.lower - x)), float(np.max(x - self.upper)), 0.0)
+                viol = bviol if not (self.n_ineq or self.n_eq) else np.nan
+                self._hist.append([self.nfg, np.nan, viol])
+                self._cache["hist_row"] = self._hist[-1]
+                self._cache["bviol"] = bviol
+            self.last_x = x.copy()
+        return x
+
+    def _note(self, which: str, value: Any) -> None:
+        self._cache[which] = value
+        row = self._cache.get("hist_row")
+        if row is None:
+            return
+        if which == "f":
+            row[1] = float(value)
+        if which in ("ineq", "eq") and ("ineq" in self._cache or not self.n_ineq) and (
+            "eq" in self._cache or not self.n_eq
+        ):
+            v = self._cache.get("bviol", 0.0)
+            if self.n_ineq:
+                v = max(v, float(np.max(self._cache["ineq"], initial=0.0)))
+            if self.n_eq:
+                v = max(v, float(np.max(np.abs(self._cache["eq"]), initial=0.0)))
+            row[2] = v
+
+    def _call_f(self, x: np.ndarray) -> float:
+        t = time.perf_counter()
+        val = float(self.problem.objective(x))
+        self.time_in_evals += time.perf_counter() - t
+        self.nf += 1
+        return val
+
+    # --------------------------------------------------------------- objective
+    def f(self, x: Any) -> float:
+        """Objective value."""
+        x = self._enter(x)
+        if "f" not in self._cache:
+            self._note("f", self._call_f(x))
+        return self._cache["f"]
+
+    def grad(self, x: Any) -> np.ndarray:
+        """Objective gradient (exact, or finite differences counted in nf)."""
+        x = self._enter(x)
+        if "g" not in self._cache:
+            p = self.problem
+            t = time.perf_counter()
+            if p.gradient is not None:
+                g = np.asarray(p.gradient(x), dtype=float).reshape(-1)
+            else:
+                f0 = self._cache.get("f")
+                if f0 is None and p.fd == "forward":
+                    f0 = self.f(x)
+                g, evals = fd_gradient(p.objective, x, f0, p.fd_step, p.fd)
+                self.nf += evals
+            self.time_in_evals += time.perf_counter() - t
+            if g.size != self.n:
+                raise ProblemError(f"{self.name}: gradient has {g.size} components, expected {self.n}")
+            self.ng += 1
+            self._cache["g"] = g
+        return self._cache["g"].copy()
+
+    def f_and_grad(self, x: Any) -> tuple[float, np.ndarray]:
+        """Value and gradient at one point (one N^fg)."""
+        return self.f(x), self.grad(x)
+
+    # ------------------------------------------------------------- constraints
+    def _constraint(self, which: str, x: Any) -> np.ndarray:
+        x = self._enter(x)
+        m = self.n_ineq if which == "ineq" else self.n_eq
+        if m == 0:
+            return np.zeros(0)
+        if which not in self._cache:
+            fun = getattr(self.problem, which)
+            t = time.perf_counter()
+            c = np.atleast_1d(np.asarray(fun(x), dtype=float)).reshape(-1)
+            self.time_in_evals += time.perf_counter() - t
+            if c.size != m:
+                raise ProblemError(f"{self.name}: {which} returned {c.size} values, expected {m}")
+            self.nc += 1
+            self._note(which, c)
+        return self._cache[which].copy()
+
+    def _constraint_jac(self, which: str, x: Any) -> np.ndarray:
+        x = self._enter(x)
+        m = self.n_ineq if which == "ineq" else self.n_eq
+        if m == 0:
+            return np.zeros((0, self.n))
+        key = which + "_jac"
+        if key not in self._cache:
+            p = self.problem
+            jac = getattr(p, key + "obian")
+            t = time.perf_counter()
+            if jac is not None:
+                J = np.asarray(jac(x), dtype=float).reshape(m, self.n)
+            else:
+                c0 = self._constraint(which, x) if p.fd == "forward" else None
+                J, evals = fd_jacobian(getattr(p, which), x, c0, p.fd_step, p.fd)
+                self.nc += evals
+            self.time_in_evals += time.perf_counter() - t
+            self.nj += 1
+            self._cache[key] = J
+        return self._cache[key].copy()
+
+    def ineq(self, x: Any) -> np.ndarray:
+        """Inequality constraint values g(x) (feasible when <= 0)."""
+        return self._constraint("ineq", x)
+
+    def eq(self, x: Any) -> np.ndarray:
+        """Equality constraint values h(x) (feasible when = 0)."""
+        return self._constraint("eq", x)
+
+    def ineq_jac(self, x: Any) -> np.ndarray:
+        """Jacobian (m, n) of the inequality constraints."""
+        return self._constraint_jac("ineq", x)
+
+    def eq_jac(self, x: Any) -> np.ndarray:
+        """Jacobian (q, n) of the equality constraints."""
+        return self._constraint_jac("eq", x)
+
+    def evaluate(self, x: Any) -> dict[str, Any]:
+        """Everything first-order at one point: f, g, ineq, ineq_jac, eq, eq_jac."""
+        return {
+            "f": self.f(x),
+            "g": self.grad(x),
+            "ineq": self.ineq(x),
+            "ineq_jac": self.ineq_jac(x),
+            "eq": self.eq(x),
+            "eq_jac": self.eq_jac(x),
+        }
+
+    def count_hessian(self, k: int = 1) -> None:
+        """Record k Hessian evaluations made by a second-order adapter."""
+        self.nh += k
+
+    # ------------------------------------------------------------------ results
+    def counts(self) -> Counts:
+        return Counts(nfg=self.nfg, nf=self.nf, ng=self.ng, nc=self.nc, nj=self.nj, nh=self.nh)
+
+    def history(self) -> np.ndarray:
+        """Array (k, 3) of [nfg, f, max_violation] per distinct point (NaN where not evaluated)."""
+        return np.array(self._hist, dtype=float).reshape(-1, 3)
