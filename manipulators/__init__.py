@@ -1,0 +1,5 @@
+"""Planar parallel manipulators, their workspaces and synthesis problems (thesis Ch. 4-6)."""
+
+from .rpr2 import RPR2 as RPR2
+from .workspace import Workspace as Workspace
+from .workspace import chord_boundary as chord_boundary
