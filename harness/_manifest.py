@@ -1,0 +1,74 @@
+"""The environment manifest written beside each suite's runs (issue 4, Section 1).
+
+``DIR/<suite>/manifest.json`` holds one entry per ``run`` session: Python and package
+versions, git commit and dirty flag, machine, start and end times, the command line and
+how many runs were executed or skipped.  Written atomically, like the runs.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import importlib.metadata
+import json
+import os
+import pathlib
+import platform
+import socket
+import subprocess
+import sys
+from typing import Any
+
+from ._store import _atomic_write_bytes
+
+__all__ = ["environment", "record_session"]
+
+PACKAGES = ("numpy", "scipy", "pandas", "pyarrow", "matplotlib", "casadi", "cvxpy", "nlopt", "clarabel",
+            "osqp", "highspy", "shapely", "dask", "distributed", "haybench")
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+
+def _git(*args: str) -> str | None:
+    try:
+        out = subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return out.stdout.strip() if out.returncode == 0 else None
+
+
+def environment() -> dict[str, Any]:
+    """Versions, git state and machine of this process."""
+    versions = {}
+    for p in PACKAGES:
+        try:
+            versions[p] = importlib.metadata.version(p)
+        except importlib.metadata.PackageNotFoundError:
+            versions[p] = None
+    commit = _git("rev-parse", "HEAD")
+    status = _git("status", "--porcelain", "--untracked-files=no") if commit else None
+    return {
+        "python": sys.version.split()[0],
+        "implementation": platform.python_implementation(),
+        "packages": versions,
+        "git_commit": commit,
+        "git_dirty": None if status is None else bool(status),
+        "machine": {"hostname": socket.gethostname(), "platform": platform.platform(),
+                    "processor": platform.processor() or platform.machine(), "cpu_count": os.cpu_count()},
+    }
+
+
+def now() -> str:
+    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+
+
+def record_session(root: pathlib.Path, session: dict[str, Any]) -> pathlib.Path:
+    """Append ``session`` (environment + times + argv + counts) to manifest.json."""
+    root.mkdir(parents=True, exist_ok=True)
+    path = root / "manifest.json"
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError):
+        data = {"sessions": []}
+    data.setdefault("sessions", []).append(session)
+    data["latest"] = session
+    _atomic_write_bytes(path, json.dumps(data, indent=1, default=str).encode())
+    return path

@@ -1,0 +1,168 @@
+"""Planning: (case x solver) -> run specifications with their keys.
+
+A run's key is (suite, problem, n, start, variant, solver, settings hash, code version)
+(issue 4, Section 1).  The settings are the solver's full option values after the
+case's options are applied, hashed exactly as `harness._record.settings_hash` hashes the
+options of the finished run, so a key computed before a run equals the stored one.
+"""
+
+from __future__ import annotations
+
+import ast
+import dataclasses
+import hashlib
+import json
+import pathlib
+import re
+from typing import Any
+
+from problems import Case, Suite
+from solvers import get_solver_class, make_solver
+
+from ._record import _jsonable, settings_hash
+from ._suites import SuiteRef
+
+__all__ = ["RunSpec", "plan_runs", "code_version", "parse_solver_spec", "HarnessArgumentError"]
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+
+class HarnessArgumentError(ValueError):
+    """Bad arguments to the harness (unknown names, bad values): CLI exit status 2."""
+
+
+@dataclasses.dataclass(frozen=True)
+class RunSpec:
+    """Everything a worker needs to perform one run (picklable, no closures)."""
+
+    suite_ref: SuiteRef
+    case_id: str
+    problem: str
+    n: int
+    start: str
+    variant: str
+    f_ref: float
+    solver: str
+    options: dict[str, Any]
+    settings: str  # JSON of the full option values
+    settings_hash: str
+    code_version: str
+    timeout: float
+    modules: tuple[str, ...] = ()
+    not_applicable: str | None = None  # reason, when the solver cannot handle the problem
+    plan_error: str | None = None  # bad options for this case: recorded as an error row
+
+    @property
+    def run_key(self) -> str:
+        return run_key(self.suite_ref.name, self.problem, self.n, self.start, self.variant,
+                       self.solver, self.settings_hash, self.code_version)
+
+
+def run_key(suite: str, problem: str, n: int, start: str, variant: str, solver: str,
+            settings_hash_: str, code_version_: str) -> str:
+    """Short stable hash of the run key tuple."""
+    blob = json.dumps([suite, problem, int(n), start, variant, solver, settings_hash_, code_version_])
+    return hashlib.sha256(blob.encode()).hexdigest()[:20]
+
+
+_CODE_VERSIONS: dict[tuple[str, ...], str] = {}
+
+
+def code_version(extra_files: tuple[str, ...] = ()) -> str:
+    """Hash of the code that determines a run's numbers.
+
+    The sources of the ``solvers``, ``problems`` and ``manipulators`` packages, the
+    row format (``harness/_record.py``, ``harness/_worker.py``) and any user suite file.
+    Any edit there gives new keys, so ``run`` re-runs instead of trusting stale rows.
+    """
+    if extra_files in _CODE_VERSIONS:
+        return _CODE_VERSIONS[extra_files]
+    h = hashlib.sha256()
+    files: list[pathlib.Path] = []
+    for pkg in ("solvers", "problems", "manipulators"):
+        d = ROOT / pkg
+        if d.is_dir():
+            files += sorted(p for p in d.rglob("*.py") if "__pycache__" not in p.parts)
+    files += [ROOT / "harness" / "_record.py", ROOT / "harness" / "_worker.py"]
+    files += [pathlib.Path(f) for f in extra_files]
+    for f in files:
+        try:
+            h.update(str(f.relative_to(ROOT) if f.is_relative_to(ROOT) else f.name).encode())
+            h.update(f.read_bytes())
+        except OSError:
+            continue
+    _CODE_VERSIONS[extra_files] = h.hexdigest()[:12]
+    return _CODE_VERSIONS[extra_files]
+
+
+def parse_solver_spec(spec: str) -> tuple[str, dict[str, Any]]:
+    """``"sqsd[rho=0.5]"`` -> ("sqsd", {"rho": 0.5}); the options override the case's."""
+    m = re.fullmatch(r"\s*([^\[\]\s]+)\s*(?:\[(.*)\])?\s*", spec)
+    if not m:
+        raise HarnessArgumentError(f"cannot parse solver specification {spec!r}")
+    opts: dict[str, Any] = {}
+    for item in filter(None, (m.group(2) or "").split(",")):
+        if "=" not in item:
+            raise HarnessArgumentError(f"solver parameter {item!r} in {spec!r} is not key=value")
+        k, v = (s.strip() for s in item.split("=", 1))
+        try:
+            opts[k] = ast.literal_eval(v)
+        except (ValueError, SyntaxError):
+            opts[k] = v
+    return m.group(1), opts
+
+
+def select_cases(suite: Suite, problems: list[str] | None) -> list[Case]:
+    """Cases whose problem id (or full case id) is in ``problems`` (all if None)."""
+    cases = list(suite.cases())
+    if not problems:
+        return cases
+    valid = set(suite.problem_ids()) | {c.case_id for c in cases}
+    unknown = [p for p in problems if p not in valid]
+    if unknown:
+        raise HarnessArgumentError(
+            f"unknown problem(s) {', '.join(unknown)} in suite {suite.name}; valid problems: "
+            f"{', '.join(suite.problem_ids())}")
+    want = set(problems)
+    return [c for c in cases if c.problem_id in want or c.case_id in want]
+
+
+def plan_runs(ref: SuiteRef, suite: Suite, solver_specs: list[str], problems: list[str] | None,
+              timeout: float, modules: tuple[str, ...] = ()) -> list[RunSpec]:
+    """Every (case, solver) run, with options, settings hash and key computed up front."""
+    parsed = [parse_solver_spec(s) for s in solver_specs]
+    classes: dict[str, Any] = {}
+    unavailable: dict[str, str] = {}
+    for name, _ in parsed:
+        try:
+            classes[name] = get_solver_class(name)
+        except KeyError as exc:  # UnknownSolver lists the valid names
+            raise HarnessArgumentError(str(exc)) from None
+        except Exception as exc:  # noqa: BLE001 - a known solver that fails to import: error rows
+            unavailable[name] = f"solver {name} unavailable: {type(exc).__name__}: {exc}"
+    cases = select_cases(suite, problems)
+    cv = code_version((ref.file,) if ref.file else ())
+    specs = []
+    for case in cases:
+        f_ref = case.problem.f_ref
+        for (name, over), spec_str in zip(parsed, solver_specs):
+            valid = [o["name"] for o in classes[name].options()] if name in classes else []
+            opts = {**case.options_for(name, valid), **over}
+            reason = err = None
+            try:
+                if name in unavailable:
+                    raise ValueError(unavailable[name])
+                inst = make_solver(name, **opts)
+                settings = _jsonable(inst.settings())
+                reason = inst.can_solve(case.problem)
+            except (ValueError, TypeError) as exc:  # bad options for this case: an error row
+                settings = _jsonable(opts)
+                err = unavailable.get(name) or f"invalid options for {spec_str}: {exc}"
+            specs.append(RunSpec(
+                suite_ref=ref, case_id=case.case_id, problem=case.problem_id, n=case.n,
+                start=case.start, variant=case.variant,
+                f_ref=float("nan") if f_ref is None else float(f_ref),
+                solver=name, options=opts, settings=json.dumps(settings, sort_keys=True),
+                settings_hash=settings_hash(settings), code_version=cv, timeout=float(timeout),
+                modules=modules, not_applicable=reason, plan_error=err))
+    return specs

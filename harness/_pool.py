@@ -1,0 +1,158 @@
+"""Local executor: persistent worker processes with a hard per-run time limit.
+
+`concurrent.futures` cannot stop one hung task, so each worker is a process of our own
+with a pipe; the parent waits on all pipes at once (`multiprocessing.connection.wait`)
+up to the nearest deadline, kills a worker whose run overstays its limit (a solver that
+sleeps forever or a C extension stuck in a loop) and starts a fresh one.  A worker that
+dies (segfault, out of memory) yields an ``error`` row and is replaced.
+
+On Linux workers are forked: start-up is cheap (the parent's imports are inherited) and
+solvers registered at run time in the parent (tests, notebooks) exist in the workers.
+"""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import signal
+import sys
+import time
+from collections import deque
+from collections.abc import Iterable, Iterator
+from multiprocessing.connection import Connection, wait
+from typing import Any
+
+from ._plan import RunSpec
+from ._worker import execute, spec_row
+
+__all__ = ["LocalPool", "default_start_method", "Slot"]
+
+
+def default_start_method() -> str:
+    return "fork" if sys.platform.startswith("linux") else "spawn"
+
+
+def _worker_main(conn: Connection) -> None:
+    """Worker loop: receive a RunSpec, send back its row; stop on None or EOF."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's business
+    while True:
+        try:
+            spec = conn.recv()
+        except (EOFError, OSError):
+            return
+        if spec is None:
+            return
+        conn.send(execute(spec))
+
+
+class Slot:
+    """One worker process and its pipe."""
+
+    def __init__(self, ctx: Any):
+        self.ctx = ctx
+        self.conn, child = ctx.Pipe(duplex=True)
+        self.proc = ctx.Process(target=_worker_main, args=(child,), daemon=True, name="harness-worker")
+        self.proc.start()
+        child.close()
+        self.spec: RunSpec | None = None
+        self.started = 0.0
+        self.deadline = float("inf")
+
+    def submit(self, spec: RunSpec) -> None:
+        self.spec, self.started = spec, time.perf_counter()
+        self.deadline = self.started + spec.timeout if spec.timeout > 0 else float("inf")
+        self.conn.send(spec)
+
+    def take(self) -> dict[str, Any]:
+        """The finished row (or an error row if the worker died)."""
+        spec, self.spec = self.spec, None
+        try:
+            return self.conn.recv()
+        except (EOFError, OSError):
+            self.proc.join(1.0)
+            code = self.proc.exitcode
+            self.kill()
+            assert spec is not None
+            return spec_row(spec, "error", f"worker process died (exit code {code})",
+                            time.perf_counter() - self.started)
+
+    def kill(self) -> None:
+        if self.proc.is_alive():
+            self.proc.kill()
+        self.proc.join()
+        self.conn.close()
+
+    def close(self) -> None:
+        try:
+            self.conn.send(None)
+        except (OSError, BrokenPipeError):
+            pass
+        self.proc.join(2.0)
+        self.kill()
+
+    @property
+    def alive(self) -> bool:
+        return self.proc.is_alive()
+
+    def run_one(self, spec: RunSpec) -> tuple[dict[str, Any], bool]:
+        """Run one spec synchronously; returns (row, worker still usable)."""
+        self.submit(spec)
+        remaining = None if self.deadline == float("inf") else max(0.0, self.deadline - time.perf_counter())
+        if self.conn.poll(remaining):
+            row = self.take()
+            return row, self.alive
+        self.kill()
+        return spec_row(spec, "timeout", f"wall-clock limit of {spec.timeout:g} s exceeded",
+                        time.perf_counter() - self.started), False
+
+
+class LocalPool:
+    """A pool of ``jobs`` worker processes (context manager)."""
+
+    def __init__(self, jobs: int, start_method: str | None = None):
+        self.jobs = max(1, int(jobs))
+        self.ctx = mp.get_context(start_method or default_start_method())
+        self.slots: list[Slot] = []
+
+    def __enter__(self) -> LocalPool:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+    def close(self) -> None:
+        for s in self.slots:
+            if s.spec is not None:
+                s.kill()  # interrupted: in-flight runs are lost, never half-written
+            else:
+                s.close()
+        self.slots = []
+
+    def map(self, specs: Iterable[RunSpec]) -> Iterator[dict[str, Any]]:
+        """Yield one row per spec, in completion order."""
+        queue = deque(specs)
+        while len(self.slots) < min(self.jobs, len(queue)):
+            self.slots.append(Slot(self.ctx))
+        busy: dict[Connection, Slot] = {}
+        while queue or busy:
+            for i, s in enumerate(self.slots):
+                if s.spec is None and queue:
+                    if not s.alive:
+                        s = self.slots[i] = Slot(self.ctx)
+                    s.submit(queue.popleft())
+                    busy[s.conn] = s
+            now = time.perf_counter()
+            nearest = min(s.deadline for s in busy.values())
+            ready = wait(list(busy), timeout=None if nearest == float("inf") else max(0.0, nearest - now))
+            for conn in ready:
+                slot = busy.pop(conn)  # type: ignore[arg-type]
+                yield slot.take()  # a dead worker is replaced at the next submit
+            now = time.perf_counter()
+            for conn, slot in list(busy.items()):
+                if now >= slot.deadline:
+                    spec = slot.spec
+                    assert spec is not None
+                    busy.pop(conn)
+                    slot.kill()
+                    slot.spec = None
+                    yield spec_row(spec, "timeout", f"wall-clock limit of {spec.timeout:g} s exceeded",
+                                   now - slot.started)

@@ -1,0 +1,155 @@
+"""`run_suite`: plan the runs of a suite, skip stored ones, execute the rest, store rows.
+
+The harness's own failures (unknown names, bad values) raise `HarnessArgumentError`;
+whatever the solvers do is recorded as rows and never stops the suite (issue 4).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import pathlib
+import sys
+import time
+from collections.abc import Iterator, Sequence
+from typing import Any, TextIO
+
+from problems import UnknownSuite
+
+from . import _manifest
+from ._plan import HarnessArgumentError, RunSpec, plan_runs
+from ._pool import LocalPool
+from ._progress import Progress
+from ._store import Store
+from ._suites import SuiteRef, import_modules, ref_for
+
+__all__ = ["run_suite", "RunSummary", "resolve_suite"]
+
+CONSOLIDATE_EVERY = 60.0  # seconds between merges of pending run files into runs.parquet
+
+
+@dataclasses.dataclass
+class RunSummary:
+    """What one ``run`` did."""
+
+    suite: str
+    planned: int
+    skipped: int
+    executed: int
+    failed: int
+    not_applicable: int
+    store: pathlib.Path
+    elapsed: float
+
+    def __str__(self) -> str:
+        if self.executed == 0:
+            return (f"{self.suite}: all {self.planned} runs already stored in {self.store} (resume) - "
+                    f"no solver work done; use --fresh to run them again")
+        return (f"{self.suite}: {self.executed} runs executed ({self.failed} error/timeout, "
+                f"{self.not_applicable} not applicable), {self.skipped} already stored, "
+                f"{self.elapsed:.1f} s -> {self.store}")
+
+
+def resolve_suite(suite: str | None = None, suite_file: str | os.PathLike[str] | None = None) -> SuiteRef:
+    """A `SuiteRef`; unknown names raise `HarnessArgumentError` listing the valid ones."""
+    try:
+        ref = ref_for(suite, suite_file)
+        ref.load()
+    except UnknownSuite as exc:
+        raise HarnessArgumentError(str(exc)) from None
+    except (FileNotFoundError, ValueError, ImportError, SyntaxError) as exc:
+        if suite_file is None and not isinstance(exc, ValueError):
+            raise
+        raise HarnessArgumentError(str(exc)) from None
+    return ref
+
+
+def _execute(specs: list[RunSpec], executor: str, jobs: int, scheduler: str | None,
+             start_method: str | None) -> Iterator[dict[str, Any]]:
+    if executor == "local":
+        with LocalPool(jobs, start_method) as pool:
+            yield from pool.map(specs)
+    elif executor == "dask":
+        from ._dask import dask_map
+
+        yield from dask_map(specs, scheduler)
+    else:
+        raise HarnessArgumentError(f"unknown executor {executor!r}; valid executors: local, dask")
+
+
+def run_suite(
+    suite: str | None = None,
+    *,
+    suite_file: str | os.PathLike[str] | None = None,
+    solvers: Sequence[str] | None = None,
+    problems: Sequence[str] | None = None,
+    out: str | os.PathLike[str] = "results",
+    jobs: int | None = None,
+    timeout: float = 600.0,
+    fresh: bool = False,
+    executor: str = "local",
+    scheduler: str | None = None,
+    modules: Sequence[str] = (),
+    start_method: str | None = None,
+    progress: TextIO | None = sys.stderr,
+    argv: Sequence[str] | None = None,
+) -> RunSummary:
+    """Run a suite's (case x solver) runs and store one row per run.
+
+    Parameters
+    ----------
+    suite, suite_file : catalogue name, or a Python file defining SUITE or PROBLEMS.
+    solvers : solver ids, optionally with options (``"sqsd[rho=0.5]"``); default the suite's.
+    problems : problem ids (or case ids) to run; default all.
+    out : results directory; rows go to ``out/<suite>/runs.parquet``.
+    jobs : worker processes (local executor); default all cores.
+    timeout : per-run wall-clock limit in seconds (<= 0: none).
+    fresh : run again even the runs already stored under the same key.
+    executor, scheduler : ``"local"`` or ``"dask"`` with a scheduler address.
+    modules : modules (names or .py paths) workers import first, e.g. to register solvers.
+    progress : stream for the progress display (None: quiet).
+    """
+    t0 = time.perf_counter()
+    started = _manifest.now()
+    if modules:
+        import_modules(tuple(modules))
+    ref = resolve_suite(suite, suite_file)
+    s = ref.load()
+    solver_specs = list(solvers) if solvers else list(s.solvers)
+    if not solver_specs:
+        raise HarnessArgumentError(f"suite {ref.name} names no default solvers; give --solvers")
+    if jobs is not None and jobs < 1:
+        raise HarnessArgumentError(f"--jobs must be >= 1, got {jobs}")
+    if executor == "dask" and not scheduler:
+        raise HarnessArgumentError("--executor dask needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
+    specs = plan_runs(ref, s, solver_specs, list(problems) if problems else None, timeout, tuple(modules))
+    store = Store(out, ref.name)
+    stored = set() if fresh else store.stored_keys()
+    todo = [sp for sp in specs if sp.run_key not in stored]
+    summary = RunSummary(ref.name, len(specs), len(specs) - len(todo), 0, 0, 0, store.parquet, 0.0)
+    if todo:
+        bar = Progress(ref.name, len(todo), progress)
+        last = time.perf_counter()
+        try:
+            for row in _execute(todo, executor, jobs or os.cpu_count() or 1, scheduler, start_method):
+                store.write_run(row)
+                summary.executed += 1
+                summary.failed += row["status"] in ("error", "timeout")
+                summary.not_applicable += row["status"] == "not_applicable"
+                bar.update(row)
+                if time.perf_counter() - last > CONSOLIDATE_EVERY:
+                    store.consolidate()
+                    last = time.perf_counter()
+        finally:
+            bar.close()
+            store.consolidate()
+            summary.elapsed = time.perf_counter() - t0
+            _manifest.record_session(store.root, {
+                **_manifest.environment(), "suite": ref.name, "suite_file": ref.file, "start": started,
+                "end": _manifest.now(), "argv": list(argv) if argv is not None else sys.argv,
+                "planned": summary.planned, "executed": summary.executed, "skipped": summary.skipped,
+                "failed": summary.failed, "executor": executor, "jobs": jobs, "timeout": timeout})
+    elif not store.parquet.exists() and store.exists():
+        store.consolidate()
+    summary.elapsed = time.perf_counter() - t0
+    return summary

@@ -1,0 +1,155 @@
+"""The results store of one suite: ``DIR/<suite>/runs.parquet`` plus pending run files.
+
+Durability (issue 4, Section 1): every finished run is written at once to its own file
+``DIR/<suite>/runs/<time>-<run_key>.json`` through a temporary file and `os.replace`
+(atomic on POSIX and Windows), so a killed process (SIGINT or SIGKILL) leaves either the
+whole file or none.  `consolidate` merges the pending files into ``runs.parquet`` — again
+via a temporary file and `os.replace` — and only then deletes them; if it is killed in
+between, the next load sees the rows twice and keeps one.  Rows are unique on
+(case_id, solver, settings_hash): a newer run of the same case, solver and settings
+(``--fresh``, or new code) replaces the older one.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import pathlib
+import tempfile
+import time
+from collections.abc import Iterator
+from typing import Any
+
+import pandas as pd
+
+from ._record import ROW_COLUMNS
+from ._worker import COUNT_COLUMNS, EXTRA_COLUMNS
+
+__all__ = ["Store", "COLUMNS", "IDENTITY", "normalize"]
+
+COLUMNS = ROW_COLUMNS + EXTRA_COLUMNS
+IDENTITY = ["case_id", "solver", "settings_hash"]
+FLOAT_COLUMNS = ["f", "f_ref", "rel_error", "inf_error", "max_violation", "wall_time_s", "time_in_evals_s"]
+
+
+def normalize(df: pd.DataFrame) -> pd.DataFrame:
+    """Fixed column order and dtypes (counts nullable: unknown for time-outs)."""
+    for c in COLUMNS:
+        if c not in df.columns:
+            df[c] = None
+    df = df[COLUMNS + [c for c in df.columns if c not in COLUMNS]].copy()
+    for c in COUNT_COLUMNS + ["n"]:
+        df[c] = pd.to_numeric(df[c], errors="coerce").astype("Int64")
+    for c in FLOAT_COLUMNS:
+        df[c] = pd.to_numeric(df[c], errors="coerce").astype("float64")
+    df["success"] = df["success"].fillna(False).astype(bool)
+    for c in ("suite", "problem", "start", "variant", "case_id", "solver", "settings", "settings_hash",
+              "status", "message", "history", "extra", "run_key", "code_version", "finished_at"):
+        df[c] = df[c].astype(object).where(df[c].notna(), "").astype(str)
+    df["x"] = [list(v) if v is not None and not isinstance(v, float) else [] for v in df["x"]]
+    return df.reset_index(drop=True)
+
+
+@contextlib.contextmanager
+def _locked(path: pathlib.Path) -> Iterator[None]:
+    """Exclusive lock so two harness processes never consolidate at once (POSIX)."""
+    try:
+        import fcntl
+    except ImportError:  # Windows: single writer assumed
+        yield
+        return
+    with open(path, "a+") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def _atomic_write_bytes(path: pathlib.Path, data: bytes) -> None:
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+class Store:
+    """Read and write the runs of one suite under ``out``."""
+
+    def __init__(self, out: str | os.PathLike[str], suite: str):
+        self.root = pathlib.Path(out) / suite
+        self.parquet = self.root / "runs.parquet"
+        self.pending_dir = self.root / "runs"
+        self.suite = suite
+
+    # ------------------------------------------------------------------ writing
+    def write_run(self, row: dict[str, Any]) -> pathlib.Path:
+        """Persist one finished run at once, atomically."""
+        self.pending_dir.mkdir(parents=True, exist_ok=True)
+        path = self.pending_dir / f"{time.time_ns()}-{row['run_key']}.json"
+        _atomic_write_bytes(path, json.dumps(row, separators=(",", ":")).encode())
+        return path
+
+    def _pending_files(self) -> list[pathlib.Path]:
+        if not self.pending_dir.is_dir():
+            return []
+        return sorted(p for p in self.pending_dir.glob("*.json") if not p.name.startswith("."))
+
+    def _read_pending(self, files: list[pathlib.Path]) -> list[dict[str, Any]]:
+        rows = []
+        for p in files:
+            try:
+                rows.append(json.loads(p.read_text()))
+            except (OSError, ValueError):  # vanished (consolidated meanwhile): it is in the parquet
+                continue
+        return rows
+
+    def consolidate(self) -> int:
+        """Merge pending run files into runs.parquet atomically; returns the row count."""
+        self.root.mkdir(parents=True, exist_ok=True)
+        with _locked(self.root / ".lock"):
+            files = self._pending_files()
+            if not files and self.parquet.exists():
+                return len(pd.read_parquet(self.parquet, columns=["run_key"]))
+            df = self._merged(files)
+            buf = df.to_parquet(index=False, compression="zstd")
+            _atomic_write_bytes(self.parquet, buf)
+            for p in files:
+                with contextlib.suppress(OSError):
+                    p.unlink()
+            return len(df)
+
+    # ------------------------------------------------------------------ reading
+    def _merged(self, files: list[pathlib.Path]) -> pd.DataFrame:
+        parts = []
+        if self.parquet.exists():
+            parts.append(pd.read_parquet(self.parquet))
+        rows = self._read_pending(files)
+        if rows:
+            parts.append(pd.DataFrame(rows))
+        if not parts:
+            return normalize(pd.DataFrame(columns=COLUMNS))
+        df = normalize(pd.concat([normalize(p) for p in parts], ignore_index=True))
+        df = df.sort_values("finished_at", kind="stable").drop_duplicates(IDENTITY, keep="last")
+        return df.reset_index(drop=True)
+
+    def exists(self) -> bool:
+        return self.parquet.exists() or bool(self._pending_files())
+
+    def load(self) -> pd.DataFrame:
+        """All stored runs (runs.parquet merged with runs not yet consolidated)."""
+        return self._merged(self._pending_files())
+
+    def stored_keys(self) -> set[str]:
+        """Run keys already stored (for resume): from the parquet and the file names."""
+        keys: set[str] = set()
+        if self.parquet.exists():
+            keys |= set(pd.read_parquet(self.parquet, columns=["run_key"])["run_key"])
+        keys |= {p.stem.split("-", 1)[1] for p in self._pending_files() if "-" in p.stem}
+        return keys

@@ -1,0 +1,116 @@
+"""Where a suite comes from: a catalogue name or a user's Python file.
+
+Problems hold closures and cannot be pickled, so a run never ships a `Problem` to a
+worker: it ships a `SuiteRef` (a name or a file path) and a case id, and the worker
+rebuilds the case.  Loaded suites are cached per process.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import importlib
+import importlib.util
+import pathlib
+import re
+import sys
+from types import ModuleType
+
+from problems import Case, Problem, Suite, get_suite
+
+__all__ = ["SuiteRef", "load_suite", "suite_module"]
+
+_CACHE: dict["SuiteRef", Suite] = {}
+_FILE_MODULES: dict[str, ModuleType] = {}
+
+
+@dataclasses.dataclass(frozen=True)
+class SuiteRef:
+    """A picklable reference to a suite: ``name`` from the catalogue, or ``file``.
+
+    ``file`` is an absolute path to a Python file defining ``SUITE`` (a
+    `problems.Suite`) or ``PROBLEMS`` (a list of `problems.Problem`; optional
+    ``NAME`` and ``SOLVERS`` give the suite name and default solvers).
+    """
+
+    name: str
+    file: str | None = None
+
+    def load(self) -> Suite:
+        return load_suite(self)
+
+
+def _file_module(path: str) -> ModuleType:
+    """Import a suite file by path once per process (workers re-import it here)."""
+    if path in _FILE_MODULES:
+        return _FILE_MODULES[path]
+    p = pathlib.Path(path)
+    if not p.is_file():
+        raise FileNotFoundError(f"suite file {path} does not exist")
+    modname = "_harness_suitefile_" + hashlib.sha1(str(p).encode()).hexdigest()[:10]
+    spec = importlib.util.spec_from_file_location(modname, p)
+    if spec is None or spec.loader is None:
+        raise ImportError(f"cannot import suite file {path}")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[modname] = module  # dataclasses and pickling look modules up here
+    spec.loader.exec_module(module)
+    _FILE_MODULES[path] = module
+    return module
+
+
+def _suite_from_module(module: ModuleType, path: str) -> Suite:
+    suite = getattr(module, "SUITE", None)
+    if isinstance(suite, Suite):
+        return suite
+    problems = getattr(module, "PROBLEMS", None)
+    if problems is None:
+        raise ValueError(f"suite file {path} defines neither SUITE (a problems.Suite) nor PROBLEMS (a list of Problem)")
+    problems = list(problems)
+    bad = [type(p).__name__ for p in problems if not isinstance(p, Problem)]
+    if bad or not problems:
+        raise ValueError(f"PROBLEMS in {path} must be a non-empty list of problems.Problem (got {bad or 'nothing'})")
+    default_name = re.sub(r"[^a-z0-9\-]+", "-", pathlib.Path(path).stem.lower().replace("_", "-")).strip("-")
+    name = str(getattr(module, "NAME", default_name) or "user")
+    solvers = tuple(getattr(module, "SOLVERS", ()))
+    cases = [Case(problem=p, problem_id=p.name) for p in problems]
+    return Suite(name=name, description=(module.__doc__ or f"problems from {path}").strip().splitlines()[0],
+                 build=lambda: cases, solvers=solvers)
+
+
+def suite_module(ref: SuiteRef) -> ModuleType | None:
+    """The user's suite file as a module (None for catalogue suites)."""
+    return _file_module(ref.file) if ref.file else None
+
+
+def load_suite(ref: SuiteRef) -> Suite:
+    """The `Suite` behind ``ref`` (cached per process)."""
+    if ref in _CACHE:
+        return _CACHE[ref]
+    if ref.file:
+        suite = _suite_from_module(_file_module(ref.file), ref.file)
+    else:
+        suite = get_suite(ref.name)
+    _CACHE[ref] = suite
+    return suite
+
+
+def ref_for(name: str | None = None, file: str | pathlib.Path | None = None) -> SuiteRef:
+    """A `SuiteRef` from a catalogue name or a file path (the file's suite name is read)."""
+    if file is not None:
+        path = str(pathlib.Path(file).resolve())
+        suite = _suite_from_module(_file_module(path), path)
+        ref = SuiteRef(name=suite.name, file=path)
+        _CACHE[ref] = suite
+        return ref
+    if not name:
+        raise ValueError("give a suite name or a suite file")
+    return SuiteRef(name=name)
+
+
+def import_modules(modules: tuple[str, ...]) -> None:
+    """Import extra modules (e.g. ones registering solvers) by name or by file path."""
+    for m in modules:
+        if m.endswith(".py") or "/" in m:
+            _file_module(str(pathlib.Path(m).resolve()))
+        else:
+            importlib.import_module(m)

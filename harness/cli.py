@@ -1,0 +1,197 @@
+"""Command line: ``python -m harness run|table|list|plot|report|compare|baseline``.
+
+A thin layer over the Python API (`harness.run_suite`, `harness.load_results`,
+`harness.render_tables`, ...).  Exit status: 0 when the harness worked (whatever the
+solvers did), 2 for bad arguments (unknown names list the valid ones), 1 for other
+harness failures (e.g. no stored results), and for ``compare`` 1 on regressions.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Sequence
+
+from ._plan import HarnessArgumentError
+
+__all__ = ["main"]
+
+
+def _csv(s: str | None) -> list[str] | None:
+    return [x.strip() for x in _split_specs(s) if x.strip()] if s else None
+
+
+def _split_specs(s: str) -> list[str]:
+    """Split on commas outside brackets: ``sqsd[rho=1,eps_g=1e-6],sd``."""
+    out, depth, cur = [], 0, ""
+    for ch in s:
+        depth += ch == "["
+        depth -= ch == "]"
+        if ch == "," and depth == 0:
+            out.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    return out + [cur]
+
+
+def _suite_args(p: argparse.ArgumentParser, required: bool = True) -> None:
+    g = p.add_mutually_exclusive_group(required=required)
+    g.add_argument("--suite", help="suite name (see `list suites`)")
+    g.add_argument("--suite-file", help="a Python file defining SUITE or PROBLEMS (your own problems)")
+
+
+def _parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="python -m harness", description=__doc__.split("\n\n")[0])
+    sub = ap.add_subparsers(dest="command", required=True)
+
+    r = sub.add_parser("run", help="run a suite and store one row per run")
+    _suite_args(r)
+    r.add_argument("--solvers", help="comma-separated solver ids, options as id[k=v] (default: the suite's)")
+    r.add_argument("--problems", help="comma-separated problem ids or case ids (default: all)")
+    r.add_argument("--out", default="results", help="results directory (default: results/)")
+    r.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
+    r.add_argument("--timeout", type=float, default=600.0, help="per-run wall-clock limit, s (default 600)")
+    r.add_argument("--fresh", action="store_true", help="re-run runs already stored under the same key")
+    r.add_argument("--executor", choices=["local", "dask"], default="local")
+    r.add_argument("--scheduler", help="Dask scheduler address for --executor dask (tcp://host:8786)")
+    r.add_argument("--solver-module", action="append", default=[], dest="modules",
+                   help="module name or .py file to import first (e.g. one that registers solvers); repeatable")
+    r.add_argument("--quiet", action="store_true", help="no progress display")
+
+    t = sub.add_parser("table", help="render a suite's tables from stored results")
+    _suite_args(t)
+    t.add_argument("--format", choices=["md", "csv", "latex"], default="md", help="format printed (all are written)")
+    t.add_argument("--out", default="results")
+
+    ls = sub.add_parser("list", help="list solvers, suites or a suite's problems")
+    ls.add_argument("what", choices=["solvers", "suites", "problems"])
+    _suite_args(ls, required=False)
+    ls.add_argument("--brief", action="store_true", help="solvers without their options")
+
+    pl = sub.add_parser("plot", help="figures from stored results (PNG and SVG)")
+    _suite_args(pl)
+    pl.add_argument("--kind", required=True, choices=["profile", "data-profile", "history", "thesis"])
+    pl.add_argument("--problem", help="problem id or case id (history plots; default: every case)")
+    pl.add_argument("--out", default="results")
+
+    rp = sub.add_parser("report", help="static HTML report of every suite under --out")
+    rp.add_argument("--out", default="results")
+
+    cp = sub.add_parser("compare", help="per-run changes between two result directories")
+    cp.add_argument("old")
+    cp.add_argument("new")
+    cp.add_argument("--suite", help="only this suite (default: every suite in both)")
+    cp.add_argument("--nfg-tol", type=float, default=0.10, help="relative N^fg increase that is a regression")
+    cp.add_argument("--rel-error-factor", type=float, default=None,
+                    help="E^r growing by more than this factor (above 1e-12) is a regression (default: off)")
+    cp.add_argument("--all", action="store_true", help="list unchanged runs too")
+
+    b = sub.add_parser("baseline", help="save the deterministic counts of stored runs as a baseline")
+    b.add_argument("--suite", required=True)
+    b.add_argument("--out", default="results")
+    b.add_argument("--to", default=os.path.join("results", "baseline"))
+    return ap
+
+
+def _cmd_run(a: argparse.Namespace) -> int:
+    from ._runner import run_suite
+
+    summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
+                        out=a.out, jobs=a.jobs, timeout=a.timeout, fresh=a.fresh, executor=a.executor,
+                        scheduler=a.scheduler, modules=a.modules, progress=None if a.quiet else sys.stderr,
+                        argv=sys.argv)
+    print(summary)
+    return 0
+
+
+def _cmd_table(a: argparse.Namespace) -> int:
+    from ._api import render_tables
+    from ._runner import resolve_suite
+    from .tables._render import RENDERERS, NoTablePlugin
+
+    ref = resolve_suite(a.suite, a.suite_file)
+    try:
+        tables, paths = render_tables(ref, a.out)
+    except NoTablePlugin as exc:
+        print(str(exc), file=sys.stderr)
+        return 1
+    for t in tables:
+        print(RENDERERS[a.format](t))
+    print(f"wrote {len(paths)} files under {os.path.join(a.out, ref.name)}", file=sys.stderr)
+    return 0
+
+
+def _cmd_list(a: argparse.Namespace) -> int:
+    from . import _listing
+    from ._runner import resolve_suite
+
+    if a.what == "solvers":
+        lines = _listing.list_solvers(verbose=not a.brief)
+    elif a.what == "suites":
+        lines = _listing.list_suites()
+    else:
+        if not (a.suite or a.suite_file):
+            raise HarnessArgumentError("list problems needs --suite or --suite-file")
+        lines = _listing.list_problems(resolve_suite(a.suite, a.suite_file))
+    for line in lines:
+        print(line)
+    return 0
+
+
+def _cmd_plot(a: argparse.Namespace) -> int:
+    from ._plots import plot
+    from ._runner import resolve_suite
+
+    ref = resolve_suite(a.suite, a.suite_file)
+    for p in plot(ref.name, a.kind, out=a.out, problem=a.problem):
+        print(p)
+    return 0
+
+
+def _cmd_report(a: argparse.Namespace) -> int:
+    from ._report import write_report
+
+    print(write_report(a.out))
+    return 0
+
+
+def _cmd_compare(a: argparse.Namespace) -> int:
+    from ._compare import compare_dirs, format_changes
+
+    res = compare_dirs(a.old, a.new, suite=a.suite, nfg_tol=a.nfg_tol, rel_error_factor=a.rel_error_factor)
+    print(format_changes(res, show_all=a.all))
+    return 1 if res.regressions else 0
+
+
+def _cmd_baseline(a: argparse.Namespace) -> int:
+    from ._compare import save_baseline
+
+    print(save_baseline(a.suite, a.out, a.to))
+    return 0
+
+
+COMMANDS = {"run": _cmd_run, "table": _cmd_table, "list": _cmd_list, "plot": _cmd_plot,
+            "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point; returns the exit status."""
+    from ._api import NoResults
+
+    args = _parser().parse_args(argv)
+    try:
+        return COMMANDS[args.command](args)
+    except HarnessArgumentError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except NoResults as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 1
+    except BrokenPipeError:  # output piped into `head`
+        sys.stderr.close()
+        return 0
+    except KeyboardInterrupt:
+        print("interrupted: finished runs are stored; run again to resume", file=sys.stderr)
+        return 130

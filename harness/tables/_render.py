@@ -1,0 +1,166 @@
+"""Render a suite's tables: find its plug-in, build the tables, write md/csv/LaTeX/HTML.
+
+A suite's plug-in is ``harness.tables.<suite with - replaced by _>`` exposing
+``tables(runs) -> list[Table]`` (see `harness.tables._base`); a user suite file may
+define the same ``tables`` function.  Cells the plug-in flags (``Table.flags``) differ
+from the thesis beyond the plug-in's stated tolerance and are marked with ``MARK``.
+"""
+
+from __future__ import annotations
+
+import html
+import importlib
+import math
+import os
+import pathlib
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import pandas as pd
+
+from .._suites import SuiteRef, suite_module
+from ._base import Table
+
+__all__ = ["MARK", "MARK_NOTE", "NoTablePlugin", "plugin_for", "build_tables", "to_markdown", "to_csv",
+           "to_latex", "to_html", "write_tables", "FORMATS"]
+
+MARK = "⚑"
+MARK_NOTE = f"{MARK} marks a cell that differs from the thesis beyond the tolerance stated in the notes."
+FORMATS = {"md": "md", "csv": "csv", "latex": "tex"}
+
+
+class NoTablePlugin(LookupError):
+    """The suite has no table plug-in (yet)."""
+
+
+def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[[pd.DataFrame], list[Table]]:
+    """The ``tables`` function of the suite's plug-in (or of its suite file)."""
+    if ref is not None and ref.file:
+        fn = getattr(suite_module(ref), "tables", None)
+        if callable(fn):
+            return fn
+    modname = f"harness.tables.{suite.replace('-', '_')}"
+    try:
+        module = importlib.import_module(modname)
+    except ModuleNotFoundError as exc:
+        if exc.name != modname:  # the plug-in exists but one of its imports is missing
+            raise
+        raise NoTablePlugin(
+            f"suite {suite!r} has no table plug-in yet (expected module {modname}, file "
+            f"harness/tables/{suite.replace('-', '_')}.py, with tables(runs) -> list[Table])") from None
+    fn = getattr(module, "tables", None)
+    if not callable(fn):
+        raise NoTablePlugin(f"{modname} defines no function tables(runs)")
+    return fn
+
+
+def build_tables(suite: str, runs: pd.DataFrame, ref: SuiteRef | None = None) -> list[Table]:
+    tables = list(plugin_for(suite, ref)(runs))
+    for t in tables:
+        if not isinstance(t, Table):
+            raise TypeError(f"table plug-in of {suite} returned {type(t).__name__}, expected harness.tables.Table")
+    return tables
+
+
+# --------------------------------------------------------------------- cells
+def _cell(v: Any) -> str:
+    if v is None or (isinstance(v, float) and math.isnan(v)) or v is pd.NA:
+        return "—"
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    return str(v)
+
+
+def _grid(table: Table, mark: Callable[[str], str]) -> tuple[list[str], list[list[str]]]:
+    """Header and body cells (index included when it carries labels), flagged cells marked."""
+    frame = table.frame
+    show_index = not isinstance(frame.index, pd.RangeIndex)
+    header = ([str(frame.index.name or "")] if show_index else []) + [str(c) for c in frame.columns]
+    flags = None
+    if table.flags is not None:
+        flags = table.flags.reindex(index=frame.index, columns=frame.columns).fillna(False).astype(bool).to_numpy()
+    body = []
+    for i, (idx, row) in enumerate(frame.iterrows()):
+        cells = [_cell(v) for v in row.tolist()]
+        if flags is not None:
+            cells = [mark(c) if flags[i, j] else c for j, c in enumerate(cells)]
+        body.append(([_cell(idx)] if show_index else []) + cells)
+    return header, body
+
+
+def _has_flags(table: Table) -> bool:
+    return table.flags is not None and bool(table.flags.fillna(False).astype(bool).to_numpy().any())
+
+
+def _notes(table: Table) -> list[str]:
+    return list(table.notes) + ([MARK_NOTE] if _has_flags(table) else [])
+
+
+def to_markdown(table: Table) -> str:
+    header, body = _grid(table, lambda c: f"{c} {MARK}")
+    esc = lambda s: s.replace("|", "\\|")  # noqa: E731
+    lines = [f"**{table.title}**", "", "| " + " | ".join(map(esc, header)) + " |",
+             "|" + "|".join("---" for _ in header) + "|"]
+    lines += ["| " + " | ".join(map(esc, r)) + " |" for r in body]
+    notes = _notes(table)
+    if notes:
+        lines += [""] + [f"- {n}" for n in notes]
+    return "\n".join(lines) + "\n"
+
+
+def to_csv(table: Table) -> str:
+    header, body = _grid(table, lambda c: f"{c} {MARK}")
+    return pd.DataFrame(body, columns=header).to_csv(index=False)
+
+
+_TEX = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
+        "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}", "—": "--"}
+
+
+def _tex(s: str) -> str:
+    return "".join(_TEX.get(ch, ch) for ch in s)
+
+
+def to_latex(table: Table) -> str:
+    header, body = _grid(table, lambda c: "\x00" + c)
+    cell = lambda c: (r"\textbf{" + _tex(c[1:]) + r"}$^\dagger$") if c.startswith("\x00") else _tex(c)  # noqa: E731
+    lines = [r"\begin{table}[htbp]", r"\centering", r"\caption{" + _tex(table.title) + "}",
+             r"\begin{tabular}{" + "l" * len(header) + "}", r"\toprule",
+             " & ".join(_tex(h) for h in header) + r" \\", r"\midrule"]
+    lines += [" & ".join(cell(c) for c in r) + r" \\" for r in body]
+    lines += [r"\bottomrule", r"\end{tabular}"]
+    notes = list(table.notes) + ([r"$^\dagger$ differs from the thesis beyond the stated tolerance."]
+                                 if _has_flags(table) else [])
+    for n in notes:
+        lines.append(r"\par\footnotesize " + (n if n.startswith("$^") else _tex(n)))
+    lines.append(r"\end{table}")
+    return "\n".join(lines) + "\n"
+
+
+def to_html(table: Table) -> str:
+    header, body = _grid(table, lambda c: "\x00" + c)
+    td = lambda c: (f'<td class="flag">{html.escape(c[1:])} {MARK}</td>' if c.startswith("\x00")  # noqa: E731
+                    else f"<td>{html.escape(c)}</td>")
+    rows = "\n".join("<tr>" + "".join(td(c) for c in r) + "</tr>" for r in body)
+    head = "<tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr>"
+    notes = "".join(f"<li>{html.escape(n)}</li>" for n in _notes(table))
+    return (f'<figure class="table"><figcaption>{html.escape(table.title)}</figcaption>'
+            f"<table><thead>{head}</thead><tbody>{rows}</tbody></table>"
+            + (f'<ul class="notes">{notes}</ul>' if notes else "") + "</figure>")
+
+
+RENDERERS = {"md": to_markdown, "csv": to_csv, "latex": to_latex}
+
+
+def write_tables(tables: Sequence[Table], outdir: str | os.PathLike[str],
+                 formats: Sequence[str] = ("md", "csv", "latex")) -> list[pathlib.Path]:
+    """Write every table in every format to ``outdir/<table.name>.<ext>``."""
+    outdir = pathlib.Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for t in tables:
+        for fmt in formats:
+            p = outdir / f"{t.name}.{FORMATS[fmt]}"
+            p.write_text(RENDERERS[fmt](t), encoding="utf-8")
+            paths.append(p)
+    return paths

@@ -1,0 +1,105 @@
+"""run_suite / load_results / CLI basics on the tiny suite: rows, resume, --fresh, exit codes."""
+
+import json
+
+import pandas as pd
+import pytest
+
+import harness
+from harness import HarnessArgumentError
+from harness._store import Store
+from harness.cli import main
+
+
+def run(tiny_file, out, **kw):
+    kw.setdefault("jobs", 1)
+    return harness.run_suite(suite_file=tiny_file, out=out, progress=None, **kw)
+
+
+def test_rows_resume_and_fresh(tiny_file, tmp_path):
+    s1 = run(tiny_file, tmp_path)
+    assert (s1.planned, s1.executed, s1.skipped, s1.not_applicable) == (5, 5, 0, 1)
+    df = harness.load_results("tiny", tmp_path)
+    assert len(df) == 5 and df["run_key"].is_unique
+    q2 = df[df.case_id == "q2/n=2/x0"].iloc[0]
+    assert q2.status == "converged" and q2.success and q2.nfg > 0 and q2.rel_error < 1e-8
+    assert json.loads(q2.settings)["rho"] == 1.0
+    hist = json.loads(q2.history)
+    assert len(hist) == q2.nfg and hist[0][0] == 1 and isinstance(hist[0][0], int)
+    con = df[df.case_id == "con/n=2/x0"].iloc[0]
+    assert con.status == "not_applicable" and "ineq" in con.message and not con.success
+    # the pending per-run files were consolidated
+    assert not list((tmp_path / "tiny" / "runs").glob("*.json"))
+    # second run: no solver work
+    s2 = run(tiny_file, tmp_path)
+    assert (s2.executed, s2.skipped) == (0, 5) and "no solver work" in str(s2)
+    # --fresh re-runs and replaces (no duplicates), deterministic counts
+    s3 = run(tiny_file, tmp_path, fresh=True)
+    assert s3.executed == 5
+    df3 = harness.load_results("tiny", tmp_path)
+    assert len(df3) == 5
+    pd.testing.assert_series_equal(df.set_index("case_id").nfg.sort_index(), df3.set_index("case_id").nfg.sort_index())
+    manifest = json.loads((tmp_path / "tiny" / "manifest.json").read_text())
+    assert len(manifest["sessions"]) == 2 and manifest["latest"]["packages"]["numpy"]
+
+
+def test_solver_options_and_problem_selection(tiny_file, tmp_path):
+    s = run(tiny_file, tmp_path, solvers=["sqsd", "sqsd[rho=0.25]"], problems=["q2", "rosen/n=2/x1"])
+    assert s.executed == 4
+    df = harness.load_results("tiny", tmp_path)
+    assert sorted(json.loads(v)["rho"] for v in df.settings) == [0.25, 0.25, 1.0, 1.0]
+    assert df.settings_hash.nunique() == 4  # rosen carries max_iter=3000, q2 does not
+
+
+def test_pending_rows_visible_and_duplicates_dropped(tiny_file, tmp_path):
+    run(tiny_file, tmp_path, problems=["q2"])
+    store = Store(tmp_path, "tiny")
+    row = store.load().iloc[0].to_dict()
+    row["x"] = list(row["x"])
+    row["finished_at"] = "9999"  # newer copy of the same run, not yet consolidated
+    row["nit"] = int(row["nit"]) + 1
+    row = {k: (int(v) if hasattr(v, "dtype") and "int" in str(v.dtype).lower() else v) for k, v in row.items()}
+    store.write_run(json.loads(json.dumps(row, default=int)))
+    df = store.load()
+    assert len(df) == 1 and df.nit.iloc[0] == row["nit"]
+
+
+def test_bad_arguments(tiny_file, tmp_path):
+    with pytest.raises(HarnessArgumentError, match="valid solvers"):
+        run(tiny_file, tmp_path, solvers=["no-such"])
+    with pytest.raises(HarnessArgumentError, match="valid problems: q2"):
+        run(tiny_file, tmp_path, problems=["zz"])
+    with pytest.raises(HarnessArgumentError, match="valid suites"):
+        harness.run_suite("no-such-suite", out=tmp_path, progress=None)
+
+
+@pytest.mark.parametrize("argv", [
+    ["run", "--suite", "no-such-suite"],
+    ["run", "--suite-file", "TINY", "--solvers", "nope"],
+    ["run", "--suite-file", "TINY", "--problems", "nope"],
+    ["run", "--suite-file", "TINY", "--jobs", "0"],
+    ["list", "problems", "--suite", "nope"],
+])
+def test_cli_bad_names_exit_2(argv, tiny_file, tmp_path, capsys):
+    argv = [tiny_file if a == "TINY" else a for a in argv] + (["--out", str(tmp_path)] if argv[0] == "run" else [])
+    assert main(argv) == 2
+    assert "valid" in capsys.readouterr().err or "jobs" in " ".join(argv)
+
+
+def test_cli_run_table_list(tiny_file, tmp_path, capsys):
+    assert main(["run", "--suite-file", tiny_file, "--out", str(tmp_path), "--jobs", "1", "--quiet"]) == 0
+    assert "5 runs executed" in capsys.readouterr().out
+    assert main(["table", "--suite-file", tiny_file, "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "Tiny: N^fg per case" in out and "| q2/n=2/x0 |" in out
+    for ext in ("md", "csv", "tex"):
+        assert (tmp_path / "tiny" / f"tiny_nfg.{ext}").exists()
+    assert main(["list", "problems", "--suite-file", tiny_file]) == 0
+    assert "rosen/n=2/x1" in capsys.readouterr().out
+    assert main(["list", "solvers"]) == 0
+    assert "sqsd" in capsys.readouterr().out
+
+
+def test_table_without_plugin_or_results(tmp_path, capsys):
+    assert main(["table", "--suite", "appendix-a", "--out", str(tmp_path)]) == 1
+    assert "no results" in capsys.readouterr().err
