@@ -1,5 +1,6 @@
 """Planar parallel manipulators, their workspaces and synthesis problems (thesis Ch. 4-6)."""
 
 from .rpr2 import RPR2 as RPR2
+from .rpr3 import RPR3 as RPR3
 from .workspace import Workspace as Workspace
 from .workspace import chord_boundary as chord_boundary
