@@ -4,3 +4,4 @@ from .rpr2 import RPR2 as RPR2
 from .rpr3 import RPR3 as RPR3
 from .workspace import Workspace as Workspace
 from .workspace import chord_boundary as chord_boundary
+from .cable import CableRobot as CableRobot
