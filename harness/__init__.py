@@ -5,12 +5,29 @@
 >>> runs = harness.load_results("appendix-a")
 >>> tables, paths = harness.render_tables("appendix-a")
 
-Command line: ``python -m harness --help``.
+Command line: ``python -m harness --help``.  Names are imported lazily so that worker
+processes (which only need `harness._worker`) start without pandas or matplotlib.
 """
 
-from ._api import NoResults as NoResults
-from ._api import load_results as load_results
-from ._api import render_tables as render_tables
-from ._plan import HarnessArgumentError as HarnessArgumentError
-from ._runner import RunSummary as RunSummary
-from ._runner import run_suite as run_suite
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+_EXPORTS = {
+    "run_suite": "._runner", "RunSummary": "._runner", "load_results": "._api", "render_tables": "._api",
+    "NoResults": "._api", "HarnessArgumentError": "._plan", "plot": "._plots", "write_report": "._report",
+    "compare_dirs": "._compare",
+}
+
+__all__ = list(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    if name in _EXPORTS:
+        return getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    raise AttributeError(f"module 'harness' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(list(globals()) + __all__)
