@@ -162,7 +162,9 @@ def dextrous_workspace(m, phi_min: float, phi_max: float, chord: float, *, branc
             if branch == "upper":
                 c = np.column_stack([c, m.yC - np.asarray(U, float).reshape(-1, 2)[:, 1]])
             return c
-        names = ["phi_max<=w_max", "w_min<=phi_min"] + (["y>=yC"] if branch == "upper" else [])
+        names = ([f"phi_max<=w_max(l{i + 1})" for i in range(3)] + [f"w_min(l{i + 1})<=phi_min" for i in range(3)]
+                 if orientation_method == "closed" else ["phi_max<=w_max", "w_min<=phi_min"])
+        names += ["y>=yC"] if branch == "upper" else []
     else:
         raise ValueError(f"constraints must be 'legs' or 'orientation', got {constraints!r}")
     w_mid = 0.5 * (phi_min + phi_max)
@@ -181,14 +183,14 @@ def dextrous_workspace(m, phi_min: float, phi_max: float, chord: float, *, branc
         if interior is None or margin <= 0:
             raise EmptyWorkspace(f"3-RPR design {m.design.tolist()} has an empty dextrous workspace over "
                                  f"[{phi_min}, {phi_max}] (largest margin {margin:.3g})")
-    ws = chord_boundary(C, interior, chord, smooth=(constraints == "legs"), **chord_kw)
-    types = _bifurcation_types(ws, constraints, branch)
+    ws = chord_boundary(C, interior, chord, **chord_kw)
+    types = _bifurcation_types(ws, constraints, branch, orientation_method)
     return _with_info(ws, kind="dextrous", phi_min=phi_min, phi_max=phi_max, u_a=u_a, w_a=w_a, u_d=u_d,
                       dexterity_at_u_d=width, interior=np.asarray(interior), bifurcation_types=types,
                       constraint_names=names, time_total=time.perf_counter() - t0)
 
 
-def _orientation_tag(j, constraints, branch):
+def _orientation_tag(j, constraints, branch, orientation_method="closed"):
     if constraints == "legs":
         if j < 6:
             return "phi_min"
@@ -197,10 +199,12 @@ def _orientation_tag(j, constraints, branch):
         if j < 18:
             return "interior"
         return "branch"
+    if orientation_method == "closed":
+        return {0: "phi_max", 1: "phi_max", 2: "phi_max", 3: "phi_min", 4: "phi_min", 5: "phi_min"}.get(int(j), "branch")
     return {0: "phi_max", 1: "phi_min"}.get(int(j), "branch")
 
 
-def _bifurcation_types(ws, constraints, branch):
+def _bifurcation_types(ws, constraints, branch, orientation_method="closed"):
     """Type I (same extreme orientation on both sides) or II (it changes), Section 5.5.3."""
     act = np.asarray(ws.active)
     k = act.size
@@ -211,7 +215,8 @@ def _bifurcation_types(ws, constraints, branch):
         if before < 0 or after < 0:
             types.append("?")
             continue
-        tb, ta = _orientation_tag(before, constraints, branch), _orientation_tag(after, constraints, branch)
+        tb = _orientation_tag(before, constraints, branch, orientation_method)
+        ta = _orientation_tag(after, constraints, branch, orientation_method)
         types.append("I" if tb == ta else "II")
     return types
 

@@ -192,17 +192,38 @@ class RPR3:
         return np.concatenate(cols, axis=1)
 
     def orientation_constraints(self, U, phi_min: float, phi_max: float, *, method: str = "closed") -> np.ndarray:
-        """The thesis's dextrous constraints (5.30)-(5.31): ``c1 = phi_max - w_max(u)``,
-        ``c2 = w_min(u) - phi_min``, with ``[w_min, w_max]`` the orientation interval
-        containing the mid-range orientation (so several orientation intervals are
-        handled).  Where the mid-range orientation itself is unreachable both are set to
-        ``pi`` (infeasible).  ``method`` as in `orientation_range`.
+        """The thesis's dextrous constraints (5.30)-(5.31), split by leg.
+
+        ``c1 = phi_max - w_max(u)`` and ``c2 = w_min(u) - phi_min``, where
+        ``[w_min, w_max]`` is the orientation interval containing the mid-range
+        orientation (so several orientation intervals are handled).  Since
+        ``w_max = min_i w_max^i`` and ``w_min = max_i w_min^i`` over the legs' own
+        intervals, the columns are ``c1^i = phi_max - w_max^i`` (i = 1..3) then
+        ``c2^i = w_min^i - phi_min``: their maxima are c1 and c2, and the active column
+        names the leg at its limit, which the thesis reads off the final constraint
+        values of (5.31) to find type I bifurcation points (Section 5.5.3).  Where the
+        mid-range orientation is unreachable for a leg its columns are ``pi``.
+
+        method : ``"closed"`` (default) or ``"numeric"`` (the thesis's (5.26) per point;
+            only c1 and c2 themselves, shape (k, 2), since it does not split by leg).
         """
         phi_min, phi_max = _orientation_range_args(phi_min, phi_max)
-        w_lo, w_hi = self.orientation_range(U, w_ref=0.5 * (phi_min + phi_max), method=method)
-        c1 = np.where(np.isnan(w_hi), np.pi, phi_max - w_hi)
-        c2 = np.where(np.isnan(w_lo), np.pi, w_lo - phi_min)
-        return np.stack([c1, c2], axis=1)
+        w_mid = 0.5 * (phi_min + phi_max)
+        if method == "numeric":
+            w_lo, w_hi = self.orientation_range(U, w_ref=w_mid, method="numeric")
+            c1 = np.where(np.isnan(w_hi), np.pi, phi_max - w_hi)
+            c2 = np.where(np.isnan(w_lo), np.pi, w_lo - phi_min)
+            return np.stack([c1, c2], axis=1)
+        if method != "closed":
+            raise ValueError(f"method must be 'closed' or 'numeric', got {method!r}")
+        U = _points(U)
+        w_ref = np.full(U.shape[0], w_mid)
+        c1, c2 = [], []
+        for i, (P, Q, alpha) in enumerate(self._cosine_legs(U)):
+            lo, hi = orient.component_containing(P, Q, alpha, self.lmin[i], self.lmax[i], w_ref)
+            c1.append(np.where(np.isnan(hi), np.pi, phi_max - np.minimum(hi, 1e3)))
+            c2.append(np.where(np.isnan(lo), np.pi, np.maximum(lo, -1e3) - phi_min))
+        return np.stack(c1 + c2, axis=1)
 
     def maximal_constraints(self, U, *, n_grid: int = 360, n_refine: int = 40) -> np.ndarray:
         """One column ``c(u) = min_w max_i viol_i(u, w)`` (eq. C.4): ``c <= 0`` iff some
