@@ -140,7 +140,8 @@ def greatest_dexterity_point(m, u_start, w_ref):
 
 
 def dextrous_workspace(m, phi_min: float, phi_max: float, chord: float, *, branch="upper",
-                       constraints: str = "legs", orientation_method: str = "closed", **chord_kw) -> Workspace:
+                       constraints: str = "legs", orientation_method: str = "closed", interior=None,
+                       **chord_kw) -> Workspace:
     """``W^D[phi_min, phi_max]`` by Algorithm 5.1 (Section 5.5.2).
 
     constraints : ``"legs"`` (default): the closed-form worst-case leg constraints
@@ -168,10 +169,15 @@ def dextrous_workspace(m, phi_min: float, phi_max: float, chord: float, *, branc
     else:
         raise ValueError(f"constraints must be 'legs' or 'orientation', got {constraints!r}")
     w_mid = 0.5 * (phi_min + phi_max)
-    u_a, w_a = assembled_point(m)                      # (5.28)
-    u_d, width = greatest_dexterity_point(m, u_a, w_mid)  # (5.29)
-    interior = u_d
-    margin = -float(np.max(C(u_d[None, :])))
+    if interior is not None:
+        u_a = w_a = u_d = width = None
+        interior = np.asarray(interior, dtype=float).reshape(2)
+        margin = -float(np.max(C(interior[None, :])))
+    else:
+        u_a, w_a = assembled_point(m)                      # (5.28)
+        u_d, width = greatest_dexterity_point(m, u_a, w_mid)  # (5.29)
+        interior = u_d
+        margin = -float(np.max(C(u_d[None, :])))
     if not margin > 0:
         # u^d need not lie in W^D (its orientation interval may not cover the range):
         # fall back to the point of greatest dextrous-constraint margin.
