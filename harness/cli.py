@@ -144,8 +144,15 @@ def _cmd_plot(a: argparse.Namespace) -> int:
     from ._plots import plot
     from ._runner import resolve_suite
 
+    from .figures import NoFigurePlugin
+
     ref = resolve_suite(a.suite, a.suite_file)
-    for p in plot(ref.name, a.kind, out=a.out, problem=a.problem):
+    try:
+        paths = plot(ref.name, a.kind, out=a.out, problem=a.problem)
+    except NoFigurePlugin as exc:
+        print(str(exc), file=sys.stderr)
+        return 1
+    for p in paths:
         print(p)
     return 0
 
@@ -162,7 +169,7 @@ def _cmd_compare(a: argparse.Namespace) -> int:
 
     res = compare_dirs(a.old, a.new, suite=a.suite, nfg_tol=a.nfg_tol, rel_error_factor=a.rel_error_factor)
     print(format_changes(res, show_all=a.all))
-    return 1 if res.regressions else 0
+    return 1 if len(res.regressions) else 0
 
 
 def _cmd_baseline(a: argparse.Namespace) -> int:

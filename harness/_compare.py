@@ -1,0 +1,152 @@
+"""``harness compare OLD NEW`` and ``harness baseline``: performance tracking (issue 4, §7).
+
+Runs are matched on (suite, case_id, solver, settings_hash), then - for runs whose
+settings changed (a new option, a new default) - on (suite, case_id, solver) where that
+is unique on both sides.  A regression is a run solved in OLD and unsolved in NEW, or a
+run solved in both whose N^fg grew by more than ``nfg_tol`` (default 10%), or, when
+``rel_error_factor`` is given, whose E^r grew by more than that factor (above 1e-12).
+
+A baseline is the deterministic part of stored runs (counts, status, f, E^r; never
+times) in ``<dir>/<suite>/counts.csv``: small, diff-able, committed.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import pathlib
+
+import numpy as np
+import pandas as pd
+
+from ._api import NoResults, load_results
+from ._plan import HarnessArgumentError
+from ._store import Store
+
+__all__ = ["compare_dirs", "compare_runs", "format_changes", "save_baseline", "load_counts", "Comparison"]
+
+BASELINE_COLUMNS = ["suite", "problem", "n", "start", "variant", "case_id", "solver", "settings_hash", "status",
+                    "success", "nfg", "nf", "ng", "nc", "nj", "nit", "f", "rel_error", "inf_error", "code_version"]
+KEY = ["suite", "case_id", "solver", "settings_hash"]
+
+
+@dataclasses.dataclass
+class Comparison:
+    changes: pd.DataFrame  # one row per matched run
+    only_old: pd.DataFrame
+    only_new: pd.DataFrame
+
+    @property
+    def regressions(self) -> pd.DataFrame:
+        return self.changes[self.changes["verdict"].str.startswith("REGRESSION")]
+
+
+def load_counts(root: str | os.PathLike[str], suite: str) -> pd.DataFrame:
+    """A suite's runs from a results directory (runs.parquet) or a baseline (counts.csv)."""
+    if Store(root, suite).exists():
+        return load_results(suite, root)
+    csv = pathlib.Path(root) / suite / "counts.csv"
+    if csv.exists():
+        df = pd.read_csv(csv, keep_default_na=False, na_values=[""], dtype={"variant": str, "settings_hash": str})
+        df["variant"] = df["variant"].fillna("")
+        return df
+    raise NoResults(f"no runs of suite {suite!r} under {root}")
+
+
+def save_baseline(suite: str, out: str | os.PathLike[str] = "results",
+                  to: str | os.PathLike[str] = "results/baseline") -> pathlib.Path:
+    """Write the deterministic counts of the stored runs to ``to/<suite>/counts.csv``."""
+    runs = load_results(suite, out)
+    path = pathlib.Path(to) / suite / "counts.csv"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    runs[BASELINE_COLUMNS].sort_values(["case_id", "solver", "settings_hash"]).to_csv(
+        path, index=False, float_format="%.10g")
+    return path
+
+
+def _verdict(r: pd.Series, nfg_tol: float, rel_error_factor: float | None) -> str:
+    so, sn = bool(r.success_old), bool(r.success_new)
+    if so and not sn:
+        return f"REGRESSION: solved -> unsolved ({r.status_new})"
+    if sn and not so:
+        return "improved: unsolved -> solved"
+    if so and sn:
+        no, nn = float(r.nfg_old), float(r.nfg_new)
+        if nn > no * (1 + nfg_tol):
+            return f"REGRESSION: N^fg +{(nn - no) / max(no, 1):.0%}"
+        if rel_error_factor is not None:
+            eo, en = float(r.rel_error_old), float(r.rel_error_new)
+            if np.isfinite(en) and en > 1e-12 and en > rel_error_factor * max(eo if np.isfinite(eo) else 0, 1e-12):
+                return f"REGRESSION: E^r {eo:.2e} -> {en:.2e}"
+        if nn < no * (1 - nfg_tol):
+            return f"improved: N^fg {(nn - no) / max(no, 1):.0%}"
+    if r.nfg_old != r.nfg_new or r.status_old != r.status_new:
+        return "changed"
+    return "same"
+
+
+def compare_runs(old: pd.DataFrame, new: pd.DataFrame, nfg_tol: float = 0.10,
+                 rel_error_factor: float | None = None) -> Comparison:
+    cols = ["nfg", "success", "status", "rel_error", "f"]
+    o = old[KEY + cols].copy()
+    n = new[KEY + cols].copy()
+    m = o.merge(n, on=KEY, how="outer", suffixes=("_old", "_new"), indicator=True)
+    both = m[m["_merge"] == "both"].drop(columns="_merge")
+    lo = m[m["_merge"] == "left_only"]
+    ro = m[m["_merge"] == "right_only"]
+    # settings changed: pair the leftovers on (suite, case_id, solver) where unique
+    k2 = ["suite", "case_id", "solver"]
+    lo1 = o.merge(lo[KEY], on=KEY)
+    ro1 = n.merge(ro[KEY], on=KEY)
+    lo1 = lo1[~lo1.duplicated(k2, keep=False)]
+    ro1 = ro1[~ro1.duplicated(k2, keep=False)]
+    pair = lo1.merge(ro1, on=k2, suffixes=("_old", "_new"))
+    if len(pair):
+        pair = pair.rename(columns={"settings_hash_new": "settings_hash"}).drop(columns="settings_hash_old")
+        both = pd.concat([both, pair[both.columns]], ignore_index=True)
+    only_old = lo[~lo.set_index(k2).index.isin(pair.set_index(k2).index)] if len(pair) else lo
+    only_new = ro[~ro.set_index(k2).index.isin(pair.set_index(k2).index)] if len(pair) else ro
+    both = both.reset_index(drop=True)
+    both["verdict"] = [_verdict(r, nfg_tol, rel_error_factor) for _, r in both.iterrows()] if len(both) else []
+    return Comparison(both.sort_values(["suite", "case_id", "solver"]).reset_index(drop=True),
+                      only_old[KEY].reset_index(drop=True), only_new[KEY].reset_index(drop=True))
+
+
+def compare_dirs(old: str | os.PathLike[str], new: str | os.PathLike[str], suite: str | None = None,
+                 nfg_tol: float = 0.10, rel_error_factor: float | None = None) -> Comparison:
+    """Compare every suite present in both directories (or only ``suite``)."""
+    from ._report import suites_under
+
+    def names(d: str | os.PathLike[str]) -> set[str]:
+        root = pathlib.Path(d)
+        if not root.is_dir():
+            raise HarnessArgumentError(f"{d} is not a directory")
+        return set(suites_under(d)) | {p.parent.name for p in root.glob("*/counts.csv")}
+
+    common = sorted(names(old) & names(new))
+    if suite is not None:
+        if suite not in common:
+            raise HarnessArgumentError(f"suite {suite!r} is not in both {old} and {new}; common suites: "
+                                       f"{', '.join(common) or '(none)'}")
+        common = [suite]
+    if not common:
+        raise HarnessArgumentError(f"no suite has results in both {old} and {new}")
+    olds = pd.concat([load_counts(old, s) for s in common], ignore_index=True)
+    news = pd.concat([load_counts(new, s) for s in common], ignore_index=True)
+    return compare_runs(olds, news, nfg_tol, rel_error_factor)
+
+
+def format_changes(c: Comparison, show_all: bool = False) -> str:
+    rows = c.changes if show_all else c.changes[c.changes["verdict"] != "same"]
+    lines = [f"{len(c.changes)} runs compared, {int((c.changes['verdict'] != 'same').sum())} changed, "
+             f"{len(c.regressions)} regressions; {len(c.only_old)} only in old, {len(c.only_new)} only in new"]
+    if len(rows):
+        lines += ["", "| suite | case | solver | N^fg old | N^fg new | solved old | solved new | E^r old | E^r new | verdict |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
+        for r in rows.itertuples():
+            lines.append(f"| {r.suite} | {r.case_id} | {r.solver} | {r.nfg_old} | {r.nfg_new} | {r.success_old} | "
+                         f"{r.success_new} | {float(r.rel_error_old):.2e} | {float(r.rel_error_new):.2e} | {r.verdict} |")
+    for label, df in (("only in old", c.only_old), ("only in new", c.only_new)):
+        if len(df):
+            lines.append(f"\n{label}: " + ", ".join(f"{r.suite}:{r.case_id}:{r.solver}" for r in df.itertuples()))
+    return "\n".join(lines)

@@ -1,0 +1,108 @@
+"""Benchmark profiles computed from stored runs (no plotting here).
+
+* Dolan & Moré (2002) performance profiles: for problem p and solver s the cost t_ps
+  (N^fg or wall time) of a *successful* run, infinity otherwise (unsolved, error,
+  time-out, not applicable); ratio r_ps = t_ps / min_s t_ps;
+  rho_s(tau) = |{p : log2 r_ps <= tau}| / |P|.
+* Moré & Wild (2009) data profiles: a run solves p at tolerance tau after the first
+  evaluation at which a feasible point satisfies f <= f_L + tau (f(x0) - f_L), f_L the
+  best feasible f any solver found on p; d_s(alpha) = |{p : t_ps / (n_p + 1) <= alpha}| / |P|.
+
+Each case (problem, n, start, variant) is one "problem" p.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+
+__all__ = ["solver_labels", "performance_profile", "data_profile", "best_so_far", "FEAS_TOL"]
+
+FEAS_TOL = 1e-6
+
+
+def solver_labels(runs: pd.DataFrame) -> pd.Series:
+    """Solver id; where one case has several runs of a solver, the options that differ.
+
+    Options a suite sets per case (e.g. SQSD's rho per problem) do not split a solver:
+    only settings that differ *within* a case do (``sqsd[rho=0.1]`` beside ``sqsd[rho=1.0]``).
+    """
+    labels = runs["solver"].astype(str).copy()
+    dup = runs.duplicated(["case_id", "solver"], keep=False)
+    for (_, solver), grp in runs[dup].groupby(["case_id", "solver"]):
+        settings = [json.loads(s or "{}") for s in grp["settings"]]
+        keys = sorted({k for st in settings for k in st
+                       if len({json.dumps(x.get(k), sort_keys=True) for x in settings}) > 1})
+        for idx, st in zip(grp.index, settings):
+            labels[idx] = f"{solver}[{','.join(f'{k}={st.get(k)}' for k in keys)}]"
+    return labels
+
+
+def cost_matrix(runs: pd.DataFrame, metric: str) -> pd.DataFrame:
+    """t_ps: cases x solver labels; inf where the run did not succeed or is missing."""
+    df = runs.assign(label=solver_labels(runs))
+    cost = pd.to_numeric(df[metric], errors="coerce").astype(float)
+    cost = cost.where(df["success"].astype(bool) & np.isfinite(cost), np.inf)
+    # a zero cost (possible for wall time rounding) would make ratios undefined
+    cost = cost.clip(lower=np.finfo(float).tiny)
+    t = pd.DataFrame({"case_id": df["case_id"], "label": df["label"], "t": cost})
+    return t.pivot_table(index="case_id", columns="label", values="t", aggfunc="min").fillna(np.inf)
+
+
+def performance_profile(runs: pd.DataFrame, metric: str = "nfg") -> tuple[np.ndarray, pd.DataFrame]:
+    """(log2-tau grid, rho) with rho: one column per solver label, one row per tau."""
+    t = cost_matrix(runs, metric)
+    best = t.min(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.log2(t.to_numpy() / best.to_numpy()[:, None])
+    ratio[~np.isfinite(ratio)] = np.inf  # unsolved by s, or by every solver
+    finite = ratio[np.isfinite(ratio)]
+    top = max(1.0, float(finite.max()) * 1.05) if finite.size else 1.0
+    grid = np.unique(np.concatenate([[0.0, top], finite]))
+    rho = (ratio[:, :, None] <= grid[None, None, :]).mean(axis=0).T
+    return grid, pd.DataFrame(rho, columns=t.columns)
+
+
+def best_so_far(history_json: str, feas_tol: float = FEAS_TOL) -> tuple[np.ndarray, np.ndarray]:
+    """(nfg, best feasible f so far) from a stored history [[nfg, f, viol], ...]."""
+    h = np.asarray(json.loads(history_json) or np.empty((0, 3)), dtype=float).reshape(-1, 3)
+    if h.size == 0:
+        return np.empty(0), np.empty(0)
+    f = np.where((h[:, 2] <= feas_tol) & np.isfinite(h[:, 1]), h[:, 1], np.inf)
+    return h[:, 0], np.minimum.accumulate(f)
+
+
+def data_profile(runs: pd.DataFrame, tau: float, alpha_max: float | None = None
+                 ) -> tuple[np.ndarray, pd.DataFrame]:
+    """(alpha grid in simplex gradients (n_p + 1) evaluations, d_s(alpha) per solver label)."""
+    df = runs.assign(label=solver_labels(runs))
+    df = df[df["status"] != "not_applicable"]
+    labels = sorted(df["label"].unique())
+    curves = {}
+    f0: dict[str, float] = {}
+    for r in df.itertuples():
+        nfg, fb = best_so_far(r.history)
+        curves[(r.case_id, r.label)] = (nfg, fb, int(r.n))
+        if nfg.size and (r.case_id not in f0):
+            raw = np.asarray(json.loads(r.history), dtype=float).reshape(-1, 3)
+            f0[r.case_id] = float(raw[0, 1])
+    cases = sorted({c for c, _ in curves})
+    fl = {c: min((float(v[1][-1]) for (cc, _), v in curves.items() if cc == c and v[1].size), default=np.inf)
+          for c in cases}
+    t = np.full((len(cases), len(labels)), np.inf)
+    for i, c in enumerate(cases):
+        if c not in f0 or not np.isfinite(fl[c]) or not np.isfinite(f0[c]):
+            continue
+        target = fl[c] + tau * (f0[c] - fl[c])
+        for j, lab in enumerate(labels):
+            nfg, fb, n = curves.get((c, lab), (np.empty(0), np.empty(0), 1))
+            hit = np.flatnonzero(fb <= target)
+            if hit.size:
+                t[i, j] = nfg[hit[0]] / (n + 1)
+    finite = t[np.isfinite(t)]
+    top = alpha_max or (max(1.0, float(finite.max()) * 1.05) if finite.size else 1.0)
+    grid = np.unique(np.concatenate([[0.0, top], finite[finite <= top]]))
+    d = (t[:, :, None] <= grid[None, None, :]).mean(axis=0).T if len(cases) else np.zeros((grid.size, len(labels)))
+    return grid, pd.DataFrame(d, columns=labels)

@@ -1,0 +1,36 @@
+"""Thesis figures: per-suite plug-ins ``harness.figures.<suite with - replaced by _>``.
+
+A plug-in defines ``figures(runs: pandas.DataFrame, outdir: pathlib.Path) -> list[Path]``
+drawing the thesis's figures for that suite from stored runs (no solver re-runs).
+`thesis_figures` is the dispatcher behind ``python -m harness plot --kind thesis``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pathlib
+
+import pandas as pd
+
+__all__ = ["NoFigurePlugin", "thesis_figures"]
+
+
+class NoFigurePlugin(LookupError):
+    """The suite has no thesis-figure plug-in."""
+
+
+def thesis_figures(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
+    modname = f"harness.figures.{suite.replace('-', '_')}"
+    try:
+        module = importlib.import_module(modname)
+    except ModuleNotFoundError as exc:
+        if exc.name != modname:
+            raise
+        raise NoFigurePlugin(f"suite {suite!r} has no thesis-figure plug-in (expected {modname} with "
+                             "figures(runs, outdir) -> list[Path])") from None
+    import matplotlib
+
+    matplotlib.use("Agg")
+    outdir = pathlib.Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    return [pathlib.Path(p) for p in module.figures(runs, outdir)]

@@ -1,0 +1,91 @@
+"""Profiles, plots, report, compare and baseline from stored runs (no solver re-runs)."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import harness
+from harness._compare import compare_runs, load_counts, save_baseline
+from harness._profiles import data_profile, performance_profile
+from harness.cli import main
+
+
+@pytest.fixture(scope="module")
+def stored(tmp_path_factory, request):
+    tiny = str(request.path.with_name("tiny_suite.py"))
+    out = tmp_path_factory.mktemp("res")
+    harness.run_suite(suite_file=tiny, solvers=["sqsd", "sqsd[rho=0.1]"], out=out, jobs=2, progress=None)
+    return tiny, out
+
+
+def _runs(rows):
+    base = {"suite": "s", "settings": "{}", "settings_hash": "h", "status": "converged", "n": 2, "f_ref": 0.0,
+            "history": "[]", "wall_time_s": 1.0}
+    return pd.DataFrame([{**base, **r} for r in rows])
+
+
+def test_performance_profile_by_hand():
+    runs = _runs([
+        {"case_id": "p1", "solver": "a", "nfg": 10, "success": True},
+        {"case_id": "p1", "solver": "b", "nfg": 20, "success": True},
+        {"case_id": "p2", "solver": "a", "nfg": 40, "success": True},
+        {"case_id": "p2", "solver": "b", "nfg": 10, "success": False},  # unsolved: infinite ratio
+    ])
+    grid, rho = performance_profile(runs, "nfg")
+    at = lambda tau: rho.iloc[np.searchsorted(grid, tau, side="right") - 1]  # noqa: E731
+    assert at(0.0)["a"] == 1.0 and at(0.0)["b"] == 0.0
+    assert at(1.0)["b"] == 0.5 and at(grid[-1])["b"] == 0.5
+
+
+def test_data_profile_by_hand():
+    h = lambda pts: json.dumps([[i + 1, f, 0.0] for i, f in enumerate(pts)])  # noqa: E731
+    runs = _runs([
+        {"case_id": "p1", "solver": "a", "nfg": 3, "success": True, "history": h([10.0, 1.0, 0.0])},
+        {"case_id": "p1", "solver": "b", "nfg": 6, "success": True, "history": h([10.0, 9, 8, 7, 6, 0.5])},
+    ])
+    grid, d = data_profile(runs, tau=0.1)  # f_L = 0, target 1.0: a at 2 evals, b at 6 evals; n + 1 = 3
+    assert d["a"].iloc[np.searchsorted(grid, 2 / 3, side="right") - 1] == 1.0
+    assert d["b"].iloc[np.searchsorted(grid, 5.9 / 3, side="right") - 1] == 0.0
+    assert d["b"].iloc[-1] == 1.0
+
+
+def test_plot_kinds_and_report(stored, capsys):
+    tiny, out = stored
+    for kind in ("profile", "data-profile"):
+        assert main(["plot", "--suite-file", tiny, "--kind", kind, "--out", str(out)]) == 0
+    assert main(["plot", "--suite-file", tiny, "--kind", "history", "--problem", "rosen", "--out", str(out)]) == 0
+    figs = out / "tiny" / "figures"
+    for stem in ("profile_nfg", "profile_wall_time", "data_profile", "history_rosen_n=2_x1"):
+        assert (figs / f"{stem}.png").stat().st_size > 1000 and (figs / f"{stem}.svg").exists()
+    assert main(["plot", "--suite-file", tiny, "--kind", "history", "--problem", "zz", "--out", str(out)]) == 2
+    assert main(["plot", "--suite-file", tiny, "--kind", "thesis", "--out", str(out)]) == 1  # no plug-in
+    capsys.readouterr()
+    assert main(["report", "--out", str(out)]) == 0
+    page = (out / "report" / "index.html").read_text()
+    assert "Tiny: N^fg per case" in page and "../tiny/figures/profile_nfg.png" in page
+    assert "sqsd[rho=0.1]" in page and "not applicable" in page
+
+
+def test_compare_and_baseline(stored, tmp_path, capsys):
+    tiny, out = stored
+    base = tmp_path / "baseline"
+    save_baseline("tiny", out, base)
+    assert main(["compare", str(base), str(out)]) == 0
+    assert "0 regressions" in capsys.readouterr().out
+    old = load_counts(base, "tiny")
+    new = harness.load_results("tiny", out)
+    solved = new.index[new.success][:2]
+    worse = new.copy()
+    worse.loc[solved[0], "nfg"] = int(worse.loc[solved[0], "nfg"] * 1.2) + 1
+    worse.loc[solved[1], ["success", "status"]] = [False, "max_iter"]
+    c = compare_runs(old, worse)
+    assert len(c.regressions) == 2
+    assert {v.split(":")[1].strip()[:4] for v in c.regressions.verdict} == {"N^fg", "solv"}
+    assert len(compare_runs(old, worse, nfg_tol=10.0).regressions) == 1  # thresholds configurable
+    # a changed settings hash still pairs the run (settings changed, same case and solver)
+    moved = new.copy()
+    moved.loc[moved.settings_hash == moved.settings_hash.iloc[0], "settings_hash"] = "changed"
+    c = compare_runs(old, moved)
+    assert len(c.changes) == len(old) and len(c.regressions) == 0
