@@ -123,7 +123,7 @@ def _compiled(kind: str, m: int, n: int, backend: str):
 
 _SOLVER_OPTS = {
     # tight tolerances: the cable tensions are compared across backends to 1e-4 and better
-    "osqp": dict(eps_abs=1e-10, eps_rel=1e-10, max_iter=200000, polish=True),
+    "osqp": dict(eps_abs=1e-10, eps_rel=1e-10, max_iter=200000, polishing=True),
     "clarabel": dict(tol_gap_abs=1e-10, tol_gap_rel=1e-10, tol_feas=1e-10),
     "highs": {},
 }

@@ -119,7 +119,7 @@ def _null4_rows(X, Y, M) -> np.ndarray:
                      _det_cols(X, Y, M, 0, 1, 3), -_det_cols(X, Y, M, 0, 1, 2)], axis=0)
 
 
-def interval_4(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, tol: float = 1e-9):
+def interval_4(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, tol: float = 1e-10):
     """Algorithm 6.1 (tension limits) for n = 4, in null-space form; vectorized.
 
     Returns
@@ -166,7 +166,7 @@ def _bases(n: int):
     return free, patterns
 
 
-def vertices(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, tol: float = 1e-9):
+def vertices(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, tol: float = 1e-10):
     """All basic solutions of S t + w = 0 with n - 3 cables at a bound; vectorized.
 
     Returns
@@ -203,7 +203,7 @@ def _pick(T: np.ndarray, valid: np.ndarray, score: np.ndarray, best: str):
 
 
 def distribute(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, method: str = "l1",
-               tol: float = 1e-9, need_tensions: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
+               tol: float = 1e-10, need_tensions: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
     """Feasibility and tensions for k poses by ``method`` (one of `METHODS`), exactly.
 
     ``l2`` is exact here for n <= 4 only (n = 3: the unique solution; n = 4: the
@@ -250,6 +250,11 @@ def distribute(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, method:
             slope = np.sum(z, axis=0)
             take_lo = slope >= 0 if method == "l1" else slope < 0
             lam = np.where(take_lo, lo, hi)
+        # keep lambda inside the exact (un-relaxed) interval where that is non-empty, so that
+        # returned tensions meet their bounds to rounding; otherwise (feasible only within
+        # tol) take the middle of the relaxed interval
+        _, _, lo0, hi0 = _interval4_rows(X, Y, M, w, t_min, t_max, 0.0)
+        lam = np.where(lo0 <= hi0, np.clip(lam, lo0, hi0), 0.5 * (lo + hi))
         with np.errstate(invalid="ignore"):
             t = tp + lam * z
         return feas, np.where(feas, t, np.nan).T

@@ -140,7 +140,7 @@ class CableRobot:
         return ok
 
     def tensions_batch(self, u: Any, phi: Any, wrench: Any, method: str = "l1", *,
-                       backend: str = "exact", tol: float = 1e-9) -> tuple[np.ndarray, np.ndarray]:
+                       backend: str = "exact", tol: float = 1e-10) -> tuple[np.ndarray, np.ndarray]:
         """Tensions at k poses: (feasible (k,), T (k, n) with NaN rows where infeasible).
 
         Feasible means tensions within [t_min, t_max] exist (for ``min-norm``: the
@@ -173,7 +173,7 @@ class CableRobot:
         return feas, np.where(feas[:, None], T, np.nan)
 
     def tensions(self, u: Any, phi: float, wrench: Any, method: str = "l1", *,
-                 backend: str = "exact", tol: float = 1e-9) -> np.ndarray | None:
+                 backend: str = "exact", tol: float = 1e-10) -> np.ndarray | None:
         """Cable tensions t (n,) at one pose, or None when no feasible tensions exist.
 
         See `tensions_batch` for ``method`` and ``backend``. Example: the l2 tensions of
