@@ -17,9 +17,18 @@ import shapely
 from .workspace import Workspace, chord_boundary
 from .workspace._polygon import as_points
 
-__all__ = ["RPR2", "CONSTRAINT_NAMES"]
+__all__ = ["RPR2", "CONSTRAINT_NAMES", "inverse_condition"]
 
 CONSTRAINT_NAMES = ("l1 >= l1_min", "l1 <= l1_max", "l2 >= l2_min", "l2 <= l2_max", "y >= yA")
+
+
+def inverse_condition(xA: float, yA: float, xB: float, U) -> np.ndarray:
+    """kappa^-1 = det J = (y - yA)(xB - xA) / (l1 l2) (eq. 4.23, D.15) for any base
+    (also xA == xB, where it is 0); NaN at the pivots."""
+    U = as_points(U, "U")
+    dy = U[:, 1] - yA
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return dy * (xB - xA) / (np.hypot(U[:, 0] - xA, dy) * np.hypot(U[:, 0] - xB, dy))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -108,10 +117,7 @@ class RPR2:
 
     def inverse_condition(self, U) -> np.ndarray:
         """kappa^-1 = det J = (y - yA)(xB - xA) / (l1 l2) (eq. 4.23, D.15), W = I/2 (4.20)."""
-        U = as_points(U, "U")
-        L = self.leg_lengths(U)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return (U[:, 1] - self.yA) * (self.xB - self.xA) / (L[:, 0] * L[:, 1])
+        return inverse_condition(self.xA, self.yA, self.xB, U)
 
     # --------------------------------------------------------------- workspace
     def constraints(self, U) -> np.ndarray:

@@ -1,0 +1,263 @@
+"""Suite ``rpr2``: dimensional synthesis of the 2-RPR manipulator (thesis Chapter 4).
+
+Problems (ordinary `problems.Problem`s of the design vector d, derivatives by finite
+differences with the thesis's scheme and interval):
+
+* ``rpr2-o``: O synthesis (4.8), min 0.5 dW_p + 0.5 dW_c, d = [xA, yA, xB, l1min, l2min],
+  l_max = 1.5 l_min, starts SP1-SP4 (Table 4.2), chord 0.5, forward differences
+  Gamma = 1e-5 (Section 4.5.2). Unconstrained.
+* ``rpr2-e``: E synthesis (4.14), min dW_c s.t. h = dW_p = 0, same design and starts,
+  chord 0.1, Gamma = 1e-3 (Section 4.6.2).
+* ``rpr2-p1``, ``-p2``, ``-p3``: P synthesis (4.21) for P1-P3: max min_{dP} kappa^-1,
+  written as min f = -min kappa^-1, s.t. g(d) <= 0 (4.16), d = [xA, yA, xB], l in [4, 7],
+  start [-4, -0.1, 4], chord 0.1 (Section 4.7.3). kappa^-1 is minimized over 2048 equally
+  spaced points of the prescribed boundary; the thesis uses the points b_p^i at the polar
+  angles of the computed boundary points (Section 4.7.2), which move with the
+  discretization; `evaluate` reports both (they differ by ~1e-5).
+
+dW_p, dW_c and g use the thesis's triangle scheme (eq. 4.9) on the chord workspace;
+`evaluate` also returns the exact values (shapely, exact annulus geometry) for the tables.
+
+Infeasible designs never raise: a design with no workspace above the base line, or an
+invalid one (l_min <= 0, xA == xB, non-finite), has the *empty* workspace, so
+dW_c = 0, dW_p = area(W_p) and g = area(W_p) > 0: the natural continuation of the
+objective, not an arbitrary penalty. A P-synthesis design with xA == xB has kappa^-1 = 0.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import OrderedDict
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from problems import Case, Problem, Suite
+
+from ..objectives import (delta_areas, delta_areas_exact, enclosure_constraint, min_inverse_condition,
+                          polar_angles)
+from ..prescribed import P1, PRESCRIBED, Prescribed
+from ..rpr2 import RPR2, inverse_condition
+from ..workspace import Workspace
+
+__all__ = ["SUITE", "STARTS", "P_START", "design_o", "design_p", "o_problem", "e_problem", "p_problem",
+           "evaluate", "SETTINGS"]
+
+# Table 4.2: O/E synthesis starting designs d0 = [xA, yA, xB, l1min, l2min]
+STARTS = {
+    "SP1": (-2.0, -0.075, 2.0, 3.0, 3.0),
+    "SP2": (-4.0, -1.0, 4.0, 5.0, 5.0),
+    "SP3": (-1.0, -1.0, 4.0, 3.0, 5.0),
+    "SP4": (-5.0, -1.0, 1.0, 5.0, 3.0),
+}
+P_START = (-4.0, -0.1, 4.0)  # Section 4.7.3, d0 for P1-P3
+P_LIMITS = ((4.0, 4.0), (7.0, 7.0))  # l_i^min = 4, l_i^max = 7 (Section 4.7.3)
+LMAX_RATIO = 1.5  # l_i^max = 1.5 l_i^min (Section 4.5.2)
+
+# Settings stated in the text (harness/reference/thesis_tables/run_settings.csv):
+SETTINGS = {
+    "o": dict(chord=0.5, fd="forward", fd_step=1e-5, eps_f=1e-6, eps_x=1e-4, eps_g=1e-3, rho=0.2),  # 4.5.2
+    # 4.6.2: chord 0.1, Gamma 1e-3, eps_f 1e-6, eps_x 1e-4; difference scheme and rho not
+    # stated -> forward (as in 4.5.2) and rho = 0.2 (as in 4.5.2 and 4.7.3) [OWN]
+    "e": dict(chord=0.1, fd="forward", fd_step=1e-3, eps_f=1e-6, eps_x=1e-4, rho=0.2),
+    # 4.7.3: chord 0.1, rho 0.2, eps_f 1e-4, eps_x 1e-3; Gamma and scheme not stated ->
+    # forward, 1e-3 (as in 4.6.2, the other d = 0.1 experiment) [OWN]
+    "p": dict(chord=0.1, fd="forward", fd_step=1e-3, eps_f=1e-4, eps_x=1e-3, rho=0.2),
+}
+
+SOLVERS = ("sqsd", "lfopc", "etopc", "dynamic-q", "scipy-slsqp", "ipopt", "nlopt-mma", "scipy-cobyla")
+
+
+# ------------------------------------------------------------------ designs
+def design_o(d) -> RPR2 | None:
+    """The O/E-synthesis design (4.13): l_max = 1.5 l_min; None if invalid."""
+    d = np.asarray(d, dtype=float)
+    try:
+        lo = (d[3], d[4])
+        return RPR2(d[0], d[1], d[2], l_min=lo, l_max=(LMAX_RATIO * lo[0], LMAX_RATIO * lo[1]))
+    except ValueError:
+        return None
+
+
+def design_p(d) -> RPR2 | None:
+    """The P-synthesis design d = [xA, yA, xB] with l in [4, 7]; None if invalid."""
+    d = np.asarray(d, dtype=float)
+    try:
+        return RPR2(d[0], d[1], d[2], l_min=P_LIMITS[0], l_max=P_LIMITS[1])
+    except ValueError:
+        return None
+
+
+class _Workspaces:
+    """Chord workspaces of recent designs (objective and constraints at one point share one)."""
+
+    def __init__(self, build: Callable[[np.ndarray], RPR2 | None], chord: float, size: int = 16):
+        self.build, self.chord, self.size = build, chord, size
+        self._cache: OrderedDict[bytes, tuple[RPR2 | None, Workspace]] = OrderedDict()
+
+    def __call__(self, d) -> tuple[RPR2 | None, Workspace]:
+        d = np.asarray(d, dtype=float)
+        key = d.tobytes()
+        hit = self._cache.get(key)
+        if hit is not None:
+            self._cache.move_to_end(key)
+            return hit
+        m = self.build(d) if np.all(np.isfinite(d)) else None
+        if m is None:
+            ws = Workspace.empty(reason="invalid design")
+        else:
+            try:
+                ws = m.workspace(self.chord)
+            except Exception as exc:  # noqa: BLE001  (never crash mid-run; the design counts as empty)
+                ws = Workspace.empty(reason=f"chord method failed: {exc}")
+        self._cache[key] = (m, ws)
+        if len(self._cache) > self.size:
+            self._cache.popitem(last=False)
+        return m, ws
+
+
+# ------------------------------------------------------------------ problems
+def o_problem(start: str = "SP1", prescribed: Prescribed = P1, chord: float | None = None) -> Problem:
+    """O synthesis (4.8): min 0.5 dW_p + 0.5 dW_c (triangle scheme), unconstrained."""
+    s = SETTINGS["o"]
+    ws = _Workspaces(design_o, chord or s["chord"])
+
+    def f(d):
+        _, w = ws(d)
+        dwp, dwc = delta_areas(w, prescribed)
+        return 0.5 * dwp + 0.5 * dwc
+
+    return Problem(name=f"rpr2-o-{start}", x0=STARTS[start], objective=f, fd=s["fd"], fd_step=s["fd_step"],
+                   source="Hay 2003, Sec. 4.5, eq. (4.8)", tags=("manipulator", "rpr2", "O"),
+                   meta={"prescribed": prescribed.name, "chord": ws.chord, "kind": "o"})
+
+
+def e_problem(start: str = "SP1", prescribed: Prescribed = P1, chord: float | None = None) -> Problem:
+    """E synthesis (4.14): min dW_c subject to h = dW_p = 0 (triangle scheme)."""
+    s = SETTINGS["e"]
+    ws = _Workspaces(design_o, chord or s["chord"])
+    return Problem(name=f"rpr2-e-{start}", x0=STARTS[start],
+                   objective=lambda d: delta_areas(ws(d)[1], prescribed)[1],
+                   eq=lambda d: np.array([delta_areas(ws(d)[1], prescribed)[0]]),
+                   fd=s["fd"], fd_step=s["fd_step"], n_eq=1,
+                   source="Hay 2003, Sec. 4.6, eq. (4.14)", tags=("manipulator", "rpr2", "E"),
+                   meta={"prescribed": prescribed.name, "chord": ws.chord, "kind": "e"})
+
+
+def _p_objective(d, w: Workspace | None, prescribed: Prescribed) -> float:
+    """-min kappa^-1 over the prescribed boundary.
+
+    ``w`` given: at the points b_p^i at the polar angles beta_c^i of the computed boundary
+    (the thesis's evaluation, Section 4.7.2); ``w`` None: at 2048 equally spaced angles
+    (what the suite minimizes: a fixed sample makes f a smooth function of d, while the
+    beta_c^i move with the discretization; the two differ by ~1e-5 at d = 0.1).
+    """
+    beta = polar_angles(w.boundary, prescribed.centre)[0] if w is not None and w.n_boundary >= 3 else None
+    d = np.asarray(d, dtype=float)
+    val = min_inverse_condition(lambda U: inverse_condition(d[0], d[1], d[2], U), prescribed, beta)
+    return -val if math.isfinite(val) else 1.0
+
+
+def p_problem(prescribed: Prescribed | str = "P1", chord: float | None = None) -> Problem:
+    """P synthesis (4.21): min -min kappa^-1 subject to g(d) <= 0 (4.16)."""
+    P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
+    s = SETTINGS["p"]
+    ws = _Workspaces(design_p, chord or s["chord"])
+
+    def f(d):
+        return _p_objective(d, None, P)
+
+    def g(d):
+        return np.array([enclosure_constraint(ws(d)[1], P)])
+
+    return Problem(name=f"rpr2-p{P.name[-1]}", x0=P_START, objective=f, ineq=g, n_ineq=1,
+                   fd=s["fd"], fd_step=s["fd_step"],
+                   source="Hay 2003, Sec. 4.7, eq. (4.21)", tags=("manipulator", "rpr2", "P"),
+                   meta={"prescribed": P.name, "chord": ws.chord, "kind": "p"})
+
+
+# ------------------------------------------------------------------ evaluation for tables
+def evaluate(kind: str, d, prescribed: Prescribed | str = "P1", chord: float | None = None,
+             exact: bool = True) -> dict[str, Any]:
+    """Every quantity of a design, discretized (as minimized) and exact (shapely).
+
+    Returns a dict with ``f`` (the thesis's objective: O: 0.5 dW_p + 0.5 dW_c; E: dW_c;
+    P: min kappa^-1, positive), ``dwp``, ``dwc``, ``g`` (4.16), ``h``, ``n_b`` (boundary
+    points) and, if ``exact``, ``f_exact``, ``dwp_exact``, ``dwc_exact``, ``kinv_exact``
+    (dense min over the prescribed boundary), ``enclosed`` (exact dW_p <= 1e-4 area(W_p)).
+    """
+    P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
+    k = kind.lower()
+    if k not in SETTINGS:
+        raise ValueError(f"kind must be one of 'o', 'e', 'p', got {kind!r}")
+    build = design_p if k == "p" else design_o
+    m, w = _Workspaces(build, chord or SETTINGS[k]["chord"])(d)
+    dwp, dwc = delta_areas(w, P)
+    out: dict[str, Any] = {"dwp": dwp, "dwc": dwc, "g": enclosure_constraint(w, P, dwp), "h": dwp,
+                           "n_b": w.n_boundary, "area": w.area}
+    out["f"] = {"o": 0.5 * dwp + 0.5 * dwc, "e": dwc, "p": -_p_objective(d, None, P)}[k]
+    if k == "p":
+        out["f_thesis_points"] = -_p_objective(d, w, P)
+    if exact:
+        if m is None:
+            dwp_x, dwc_x = float(P.area()), 0.0
+        else:
+            dwp_x, dwc_x = delta_areas_exact(m.exact_region(), P)
+        out.update(dwp_exact=dwp_x, dwc_exact=dwc_x, enclosed=bool(dwp_x <= 1e-4 * P.area()))
+        dd = np.asarray(d, dtype=float)
+        kinv = min_inverse_condition(lambda U: inverse_condition(dd[0], dd[1], dd[2], U), P)
+        out["kinv_exact"] = kinv
+        out["f_exact"] = {"o": 0.5 * dwp_x + 0.5 * dwc_x, "e": dwc_x, "p": kinv}[k]
+    return out
+
+
+# ------------------------------------------------------------------ the suite
+def _caps(kind: str) -> dict[str, dict[str, Any]]:
+    """Per-solver settings: the thesis's tolerances where a solver has them, and caps that
+    keep every run of the suite within its time budget (each evaluation is a workspace)."""
+    s = SETTINGS[kind]
+    general = {k: s[k] for k in ("eps_f", "eps_x", "eps_g", "rho") if k in s}
+    opts: dict[str, dict[str, Any]] = {"*": general}
+    opts["lfopc"] = {"delta": s["rho"], "max_steps": 400}  # move limit rho as LFOP's step limit
+    opts["dynamic-q"] = {"max_iter": 400}
+    opts["scipy-cobyla"] = {"rhobeg": s["rho"], "tol": s["eps_x"], "maxfev": 600}
+    opts["scipy-slsqp"] = {"maxiter": 100}
+    opts["ipopt"] = {"max_iter": 100}
+    opts["nlopt-mma"] = {"maxeval": 300, "max_eval": 300}
+    return {k: _valid(k, v) for k, v in opts.items()}
+
+
+def _valid(solver: str, options: dict[str, Any]) -> dict[str, Any]:
+    """Keep only the options the solver has (solvers written in parallel may name their
+    caps differently; an unknown option would be an error at run time)."""
+    if solver == "*":
+        return options
+    try:
+        from solvers import get_solver_class
+
+        names = {o["name"] for o in get_solver_class(solver).options()}
+    except Exception:  # noqa: BLE001  (solver not available: its options do not matter)
+        return {}
+    return {k: v for k, v in options.items() if k in names}
+
+
+def _build() -> list[Case]:
+    cases: list[Case] = []
+    for sp in STARTS:
+        cases.append(Case(o_problem(sp), "rpr2-o", start=sp, options=_caps("o"),
+                          meta={"table": {"SP1": "4.3", "SP2": "4.4", "SP3": "4.5", "SP4": "4.6"}[sp]}))
+    for sp in STARTS:
+        cases.append(Case(e_problem(sp), "rpr2-e", start=sp, options=_caps("e"), meta={"table": "4.7"}))
+    for name in ("P1", "P2", "P3"):
+        cases.append(Case(p_problem(name), f"rpr2-p{name[-1]}", start="d0", options=_caps("p"),
+                          meta={"table": "4.9", "prescribed": name}))
+    return cases
+
+
+SUITE = Suite(
+    name="rpr2",
+    description="2-RPR dimensional synthesis (thesis Ch. 4): O (Tables 4.3-4.6), E (4.7), P (4.9)",
+    build=_build,
+    solvers=SOLVERS,
+)
