@@ -1,0 +1,93 @@
+"""Suite ``rpr3``: SO, MO and D synthesis problems (thesis Sections 5.6-5.8)."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from manipulators.synthesis.rpr3_suite import (SETTINGS, SUITE, evaluate, exact_enclosure, synthesis_problem)
+
+
+@pytest.mark.parametrize("pname,expect", [("P1", 0.759), ("P2", 0.768), ("P3", 0.747)])
+def test_so_start_objective_reproduces_table_5_3(pname, expect):
+    prob = synthesis_problem("so", pname)
+    assert -prob.objective(prob.x0) == pytest.approx(expect, abs=3e-3)
+    # the start design does not enclose the prescribed workspace (Fig. 5.7a)
+    assert prob.ineq(prob.x0)[0] > 0
+
+
+def test_suite_cases_and_settings():
+    cases = SUITE.cases()
+    ids = [c.problem_id for c in cases]
+    assert ids == [f"rpr3-{k}-p{i}" for k in ("so", "mo", "d") for i in (1, 2, 3)]
+    for c in cases:
+        kind = c.meta["kind"]
+        assert c.problem.fd == SETTINGS[kind]["fd"] and c.problem.fd_step == SETTINGS[kind]["fd_step"]
+        assert c.problem.f_ref < -0.85  # -f* of Tables 5.3-5.5
+        dq = c.options.get("dynamic-q", {})
+        if dq:
+            assert dq["rho"] == SETTINGS[kind]["rho"] and dq["eps_x"] == 1e-4
+    assert SETTINGS["d"]["fd"] == "central" and SETTINGS["d"]["rho"] == 0.05
+    assert SETTINGS["mo"]["phis"] == pytest.approx((-5 * math.pi / 180, 0.0, 5 * math.pi / 180))
+    assert SUITE.solvers[0] == "dynamic-q"
+
+
+@pytest.mark.parametrize("kind", ["so", "mo", "d"])
+def test_infeasible_designs_are_graceful(kind):
+    prob = synthesis_problem(kind, "P2")
+    area = 0.0
+    for d in ([-1, 0, 1, 2, -0.5], [np.nan, 0, 1, 2, 1], [-20.0, 0.0, 20.0, 40.0, 0.5]):
+        f = prob.objective(np.asarray(d, float))
+        g = prob.ineq(np.asarray(d, float))[0]
+        assert np.isfinite(f) and np.isfinite(g) and g > 0
+        area = max(area, g)
+    # the far design's g grows with its distance from feasibility (slope for the optimizer)
+    g1 = prob.ineq(np.array([-20.0, 0.0, 20.0, 40.0, 0.5]))[0]
+    g2 = prob.ineq(np.array([-30.0, 0.0, 30.0, 60.0, 0.5]))[0]
+    assert g2 > g1
+
+
+def test_feasible_design_has_negative_g_and_is_enclosed():
+    # a design found by Dynamic-Q for SO/P2 (close to Table 5.3's d*)
+    d = np.array([-1.153, 0.3003, 1.275, 1.906, 0.9401]) + np.array([0.0, -0.02, 0.0, 0.0, 0.0])
+    prob = synthesis_problem("so", "P2")
+    g = prob.ineq(d)[0]
+    ex = exact_enclosure("so", d, "P2")
+    assert (g <= 0) == ex["enclosed"]
+
+
+def test_evaluate_reports_thesis_style_kappa_and_exact_check():
+    prob = synthesis_problem("so", "P3")
+    out = evaluate("so", prob.x0, "P3")
+    assert out["kinv"] == pytest.approx(0.747, abs=3e-3)
+    assert out["kinv_thesis"] >= out["kinv"] - 1e-12  # sampled at fewer angles
+    assert out["enclosed"] is False and out["ratio"] > 0.05
+    with pytest.raises(ValueError, match="kind"):
+        evaluate("xx", prob.x0)
+    with pytest.raises(ValueError, match="valid"):
+        synthesis_problem("so", "P7")
+
+
+def test_dynamic_q_improves_so_p2_quickly():
+    """A short Dynamic-Q run (capped) moves from the infeasible start to a better design."""
+    from solvers import solve
+
+    prob = synthesis_problem("so", "P2")
+    res = solve(prob, "dynamic-q", rho=0.1, eps_f=1e-6, eps_x=1e-4, max_iter=8)
+    assert res.nfg <= 9
+    assert -res.f > 0.80  # from 0.768
+
+
+def test_table_plugin_on_a_fake_run():
+    from harness.tables.rpr3 import synthesis_table
+
+    d = [-1.15, 0.28, 1.27, 1.91, 0.94]
+    runs = pd.DataFrame([{"suite": "rpr3", "problem": "rpr3-so-p2", "solver": "dynamic-q", "status": "converged",
+                          "nfg": 10, "nf": 60, "x": d, "wall_time_s": 1.0, "f": -0.9, "max_violation": 0.0,
+                          "history": "[]"}])
+    t = synthesis_table(runs, "so")
+    assert t.name == "table_5_3" and len(t.frame) == 1
+    row = t.frame.iloc[0]
+    assert row["f* (thesis)"] == pytest.approx(0.927)
+    assert row["f(d0)"] == pytest.approx(0.768, abs=1e-3)
