@@ -79,16 +79,19 @@ def _min_norm_rows(X, Y, M, w, refine: bool = True) -> np.ndarray:
     with np.errstate(invalid="ignore", divide="ignore"):
         inv = 1.0 / (G00 * A00 + G01 * A01 + G02 * A02)
 
-    def back(r0, r1, r2):  # t = -S^T G^{-1} r
-        y0 = (A00 * r0 + A01 * r1 + A02 * r2) * inv
-        y1 = (A01 * r0 + A11 * r1 + A12 * r2) * inv
-        y2 = (A02 * r0 + A12 * r1 + A22 * r2) * inv
-        return -(X * y0 + Y * y1 + M * y2)
+    def back(r0, r1, r2):  # t = -S^T G^{-1} r  (NaN where S is singular, silently)
+        with np.errstate(invalid="ignore", over="ignore"):
+            y0 = (A00 * r0 + A01 * r1 + A02 * r2) * inv
+            y1 = (A01 * r0 + A11 * r1 + A12 * r2) * inv
+            y2 = (A02 * r0 + A12 * r1 + A22 * r2) * inv
+            return -(X * y0 + Y * y1 + M * y2)
 
     w0, w1, w2 = w[:, 0], w[:, 1], w[:, 2]
     t = back(w0, w1, w2)
     if refine:  # one step of iterative refinement on the residual S t + w
-        t = t + back((X * t).sum(0) + w0, (Y * t).sum(0) + w1, (M * t).sum(0) + w2)
+        with np.errstate(invalid="ignore", over="ignore"):
+            r0, r1, r2 = (X * t).sum(0) + w0, (Y * t).sum(0) + w1, (M * t).sum(0) + w2
+        t = t + back(r0, r1, r2)
     return t
 
 
@@ -243,8 +246,9 @@ def distribute(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, method:
         if method == "l2":
             lam = np.clip(0.0, lo, hi)  # t^p is orthogonal to z, so lambda* = 0 before clamping
         elif method == "l2-max":  # convex objective: maximal at an end of the interval
-            nlo = np.sum((tp + lo * z) ** 2, axis=0)
-            nhi = np.sum((tp + hi * z) ** 2, axis=0)
+            with np.errstate(invalid="ignore", over="ignore"):
+                nlo = np.sum((tp + lo * z) ** 2, axis=0)
+                nhi = np.sum((tp + hi * z) ** 2, axis=0)
             lam = np.where(nlo >= nhi, lo, hi)
         else:  # l1: linear in lambda, so an end of the interval (Algorithm 6.1 remark)
             slope = np.sum(z, axis=0)
@@ -254,8 +258,8 @@ def distribute(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, method:
         # returned tensions meet their bounds to rounding; otherwise (feasible only within
         # tol) take the middle of the relaxed interval
         _, _, lo0, hi0 = _interval4_rows(X, Y, M, w, t_min, t_max, 0.0)
-        lam = np.where(lo0 <= hi0, np.clip(lam, lo0, hi0), 0.5 * (lo + hi))
-        with np.errstate(invalid="ignore"):
+        with np.errstate(invalid="ignore"):  # infeasible poses: inf - inf, masked below
+            lam = np.where(lo0 <= hi0, np.clip(lam, lo0, hi0), 0.5 * (lo + hi))
             t = tp + lam * z
         return feas, np.where(feas, t, np.nan).T
     S3 = np.stack([X.T, Y.T, M.T], axis=1)

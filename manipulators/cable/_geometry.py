@@ -96,10 +96,10 @@ def structure_matrix(ell: np.ndarray, a: np.ndarray, lengths: np.ndarray | None 
     S = J^T with J the Jacobian of (6.7). A zero-length cable gives a NaN column.
     """
     l = cable_lengths(ell) if lengths is None else lengths
+    mz = a[..., 0] * ell[..., 1] - a[..., 1] * ell[..., 0]
     with np.errstate(invalid="ignore", divide="ignore"):
         inv = 1.0 / l
-    mz = a[..., 0] * ell[..., 1] - a[..., 1] * ell[..., 0]
-    return np.stack([ell[..., 0] * inv, ell[..., 1] * inv, mz * inv], axis=1)
+        return np.stack([ell[..., 0] * inv, ell[..., 1] * inv, mz * inv], axis=1)
 
 
 def structure_rows(frame_points: np.ndarray, platform_points: np.ndarray, u: np.ndarray,
@@ -122,9 +122,9 @@ def structure_rows(frame_points: np.ndarray, platform_points: np.ndarray, u: np.
     ex = frame_points[:, 0:1] - ax - u[None, :, 0]        # ell^i, eq. (6.2)
     ey = frame_points[:, 1:2] - ay - u[None, :, 1]
     lengths = np.sqrt(ex * ex + ey * ey)                  # eq. (6.4)
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore"):  # zero-length cable -> NaN column
         inv = 1.0 / lengths
-    return ex * inv, ey * inv, (ax * ey - ay * ex) * inv, lengths
+        return ex * inv, ey * inv, (ax * ey - ay * ex) * inv, lengths
 
 
 def jacobian(ell: np.ndarray, a: np.ndarray) -> np.ndarray:
