@@ -71,8 +71,11 @@ def newton_corner(ev, p, q, i: int, j: int, *, d: float, tol: float,
 def bisect_corner(ev, p, i: int, *, d: float, tol: float, theta: float, smooth: bool,
                   n_refine: int, base: np.ndarray, chord_step) -> np.ndarray | None:
     """Corner between p (active i) and the next point, by bisection on the sub-chord radius."""
+    # The point on the *first* constraint at radius rho_lo is within ~(rho_hi - rho_lo) of
+    # the corner along that constraint; the one on the second at rho_hi is only within
+    # ~sqrt(2 L (rho_hi - rho_lo)) (it moves along the other side), so p_lo is returned.
     lo, hi = 0.0, d
-    p_hi = None
+    p_lo = p
     for _ in range(200):
         if hi - lo <= tol:
             break
@@ -82,15 +85,10 @@ def bisect_corner(ev, p, i: int, *, d: float, tol: float, theta: float, smooth: 
             return None
         pt, jm = step
         if jm == i:
-            lo = mid
+            lo, p_lo = mid, pt
         else:
-            hi, p_hi = mid, pt
-    if p_hi is None:
-        step = chord_step(ev, p, theta, hi, base, tol, smooth, n_refine)
-        if step is None:
-            return None
-        p_hi = step[0]
-    return p_hi
+            hi = mid
+    return p_lo
 
 
 def locate_corner(ev, p, q, i: int, j: int, *, d: float, tol: float, smooth: bool,

@@ -100,7 +100,7 @@ def chord_boundary(
 
     Raises
     ------
-    InfeasibleInterior : ``interior`` violates (or sits on) a constraint.
+    InfeasibleInterior : ``interior`` violates a constraint (or, if smooth, sits on one).
     ChordError : no boundary within ``r_max`` along the ray.
     """
     t_start = time.perf_counter()
@@ -121,11 +121,12 @@ def chord_boundary(
     ev = Evaluator(constraints)
 
     c0 = ev(u0[None, :])[0]
-    if not np.all(c0 < 0):
-        bad = np.flatnonzero(~(c0 < 0)).tolist()
+    ok = c0 < 0 if smooth else c0 <= 0  # indicator constraints are 0 where feasible
+    if not np.all(ok):
+        bad = np.flatnonzero(~ok).tolist()
         raise InfeasibleInterior(
             f"interior point {u0.tolist()} is not strictly feasible: constraints {bad} have values "
-            f"{c0[bad].tolist()} (need all < 0)")
+            f"{c0[bad].tolist()} (need all {'< 0' if smooth else '<= 0'})")
 
     # ---- 1. ray search for b^1 (eq. 5.16)
     b1, j1 = _ray_search(ev, u0, s, d, tol, smooth, n_refine, r_max if r_max is not None else 1e4 * d)

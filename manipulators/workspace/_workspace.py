@@ -103,7 +103,7 @@ class Workspace:
         p = as_points(points)
         if self.boundary.shape[0] >= 3:
             poly = self.polygon()
-            return np.asarray(shapely.covers_xy(poly, p[:, 0], p[:, 1]), dtype=bool)
+            return np.asarray(shapely.intersects_xy(poly, p[:, 0], p[:, 1]), dtype=bool)
         if self.mask is not None:
             gx, gy = self.grid
             ix = _nearest(gx, p[:, 0])

@@ -1,0 +1,73 @@
+"""2-RPR kinematics (Section 4.3, Appendix D): Jacobian (4.22) and kappa^-1 (4.23)."""
+
+import numpy as np
+import pytest
+
+from manipulators import RPR2
+from manipulators.rpr2 import inverse_condition
+
+R = RPR2(-3.5, -0.6, 4.2, (4.0, 3.5), (6.5, 7.0))
+RNG = np.random.default_rng(1)
+U = np.column_stack((RNG.uniform(-3, 3, 20), RNG.uniform(0.5, 6, 20)))
+
+
+def test_jacobian_against_finite_differences_of_inverse_kinematics():
+    h = 1e-6
+    J = R.jacobian(U)
+    for k in range(2):
+        e = np.zeros(2)
+        e[k] = h
+        fd = (R.leg_lengths(U + e) - R.leg_lengths(U - e)) / (2 * h)
+        assert np.allclose(J[:, :, k], fd, atol=1e-8)
+
+
+def test_inverse_condition_is_det_j_and_one_over_kappa():
+    J = R.jacobian(U)
+    det = np.linalg.det(J)
+    kinv = R.inverse_condition(U)
+    assert np.allclose(kinv, det, atol=1e-12)
+    # kappa = ||J|| ||J^-1|| with ||A|| = sqrt(tr(A W A^T)), W = I/2 (4.19)-(4.20)
+    norm = lambda A: np.sqrt(np.einsum("kij,kij->k", A, A) / 2)  # noqa: E731
+    kappa = norm(J) * norm(np.linalg.inv(J))
+    assert np.allclose(kinv, 1 / kappa, rtol=1e-10)
+    assert np.all((kinv > 0) & (kinv <= 1 + 1e-12))
+
+
+def test_kappa_inverse_is_one_on_the_ridge_circle():
+    # (4.24): the circle of radius (xB - xA)/2 about the base midpoint
+    t = np.linspace(0.1, np.pi - 0.1, 9)
+    c, rad = (R.xA + R.xB) / 2, (R.xB - R.xA) / 2
+    pts = np.column_stack((c + rad * np.cos(t), R.yA + rad * np.sin(t)))
+    assert np.allclose(R.inverse_condition(pts), 1.0)
+    assert np.allclose(inverse_condition(R.xA, R.yA, R.xB, pts), 1.0)
+
+
+def test_constraint_jacobian_against_finite_differences():
+    h = 1e-6
+    J = R.constraint_jacobian(U)
+    for k in range(2):
+        e = np.zeros(2)
+        e[k] = h
+        fd = (R.constraints(U + e) - R.constraints(U - e)) / (2 * h)
+        assert np.allclose(J[:, :, k], fd, atol=1e-8)
+
+
+def test_forward_inverts_inverse_kinematics():
+    L = R.leg_lengths(U)
+    assert np.allclose(R.forward(L[:, 0], L[:, 1]), U)
+
+
+@pytest.mark.parametrize("kw,msg", [
+    (dict(xA=1.0, yA=0.0, xB=1.0), "singular"),
+    (dict(xA=0.0, yA=0.0, xB=1.0, l_min=(3, 3), l_max=(2, 4)), "l_min < l_max"),
+    (dict(xA=0.0, yA=0.0, xB=1.0, l_min=(0, 3), l_max=(2, 4)), "> 0"),
+    (dict(xA=np.nan, yA=0.0, xB=1.0), "finite"),
+])
+def test_invalid_designs_raise_clear_errors(kw, msg):
+    with pytest.raises(ValueError, match=msg):
+        RPR2(**kw)
+
+
+def test_interior_point_is_strictly_inside():
+    u = R.interior_point()
+    assert np.all(R.constraints(u[None]) < 0)
