@@ -1,0 +1,110 @@
+"""LFOPC: the leap-frog method with the three-phase penalty scheme (thesis Appendix B.4).
+
+Two layers, so that the same algorithm serves a benchmark problem and a function-free
+subproblem:
+
+(a) `LFOPC.solve_form(form, x0)` runs the algorithm on a *penalty form*
+    (`solvers._penalty.PenaltyForm`: gradient of f, constraint values and Jacobians,
+    bounds).  Dynamic-Q calls it on its spherical quadratic subproblems; other code
+    calls it on small problems given by callables, e.g. the cable-tension QP (6.17)::
+
+        from solvers.lfopc import LFOPC
+        from solvers._penalty import PenaltyForm
+        form = PenaltyForm(n=m, grad_f=lambda t: 2 * t,
+                           eq=lambda t: S @ t + w, eq_jac=lambda t: S,
+                           lower=t_min, upper=t_max)
+        res = LFOPC().solve_form(form, x0)     # res.x, res.max_violation, res.ng
+
+(b) `LFOPC.minimize(oracle)` feeds (a) from the counting oracle.  LFOPC is
+    gradient-only: it never evaluates f (the front door reports f at the end,
+    uncounted); every point where the penalty gradient is formed is one N^g.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from problems import Oracle
+
+from ._base import AbstractSolver, option
+from ._penalty import OracleForm, PenaltyForm, ThreePhaseResult, three_phase
+from ._result import SolverOutput, Status
+from .lfop import LfopParams, lfop
+
+__all__ = ["LFOPC"]
+
+
+@dataclasses.dataclass(frozen=True)
+class LFOPC(AbstractSolver):
+    """Leap-frog optimizer for constrained problems (Snyman 2000; thesis Appendix B).
+
+    Phase 0: LFOP on the exterior penalty function Q(x, mu0) (eq. B.6) from x0;
+    phase 1: LFOP on Q(x, mu1) from x*(mu0), active set I_a = {j : g_j(x*(mu1)) > 0};
+    phase 2: LFOP on Q_a = mu1 (sum_{I_a} g_j^2 + sum h_k^2) (eq. B.7) from x*(mu1).
+    Bounds are inequalities.  The LFOP heuristics are those of algorithms.md section 1;
+    the stiffness guard (section 1.6, our addition) is on by default.
+    """
+
+    name = "lfopc"
+    summary = "Leap-frog dynamic trajectory method with three-phase penalty (thesis App. B)"
+    family = "thesis"
+    handles = frozenset({"bounds", "ineq", "eq"})
+
+    mu0: float = option(1e2, "phase-0 penalty parameter", "App. B.4 [THESIS]")
+    mu1: float = option(1e4, "phase-1/2 penalty parameter", "App. B.4 [THESIS]")
+    active_tol: float = option(0.0, "g_j(x*(mu1)) > active_tol marks constraint j active for phase 2",
+                               "App. B.4 '> 0' [THESIS]; tolerance [OWN]")
+    delta: float = option(1.0, "LFOP maximum step length", "[CILIB] LFDecorator delta = 1; [MLA3]")
+    dt0: float = option(0.5, "LFOP initial time step", "[CILIB] defaultDeltaT = 0.5; [MLA3]")
+    m: int = option(3, "acceleration reversals at the step limit before dt is halved", "[CILIB] m = 3; [MLA3]")
+    delta1: float = option(1e-3, "increment of the time-step magnification factor", "[CILIB]; [MLA3] code")
+    j0: int = option(2, "interferences keeping a reduced velocity before it is zeroed", "[CILIB] j = 2; [MLA3] ix = 2")
+    eps_g: float = option(1e-5, "per-phase stop: ||grad Q|| <= eps_g", "[MLA3] tol = 1e-5")
+    max_steps: int = option(10_000, "per-phase cap on gradient evaluations", "[OWN]")
+    eps_x: float = option(0.0, "per-phase stop on step length (0 = off)", "[OWN]")
+    dt_mode: str = option("fixed", "'fixed' (dt0) or 'auto' (first step delta/10)", "[CILIB] / [RECALL]")
+    interference_anchor: str = option("moving", "'moving' [CILIB] or 'fixed' [MLA3] midpoint anchor",
+                                      "algorithms.md 1.3 step 9")
+    stiffness_guard: bool = option(True, "cap dt by the curvature along the last move (penalty walls)",
+                                   "[OWN] algorithms.md 1.6")
+    kappa_fac: float = option(0.5, "stiffness guard target dt*sqrt(kappa)", "[OWN] algorithms.md 1.6")
+
+    def __post_init__(self) -> None:
+        if not (np.isfinite(self.mu0) and np.isfinite(self.mu1) and 0 < self.mu0 <= self.mu1):
+            raise ValueError(f"lfopc: need 0 < mu0 <= mu1 < inf, got mu0={self.mu0}, mu1={self.mu1}")
+        if not (self.active_tol >= 0):
+            raise ValueError(f"lfopc: active_tol must be >= 0, got {self.active_tol}")
+        self.lfop_params()  # validates the LFOP options with clear messages
+
+    def lfop_params(self) -> LfopParams:
+        """The LFOP parameters used in every phase."""
+        return LfopParams(delta=self.delta, dt0=self.dt0, m=self.m, delta1=self.delta1, j0=self.j0,
+                          eps_g=self.eps_g, max_steps=self.max_steps, eps_x=self.eps_x, dt_mode=self.dt_mode,
+                          interference_anchor=self.interference_anchor, stiffness_guard=self.stiffness_guard,
+                          kappa_fac=self.kappa_fac)
+
+    def solve_form(self, form: PenaltyForm, x0: np.ndarray) -> ThreePhaseResult:
+        """Run the three phases on a penalty form from ``x0`` (no function values used)."""
+        params = self.lfop_params()
+        return three_phase(form, x0, lambda grad, x: lfop(grad, x, params), self.mu0, self.mu1, self.active_tol)
+
+    def minimize(self, oracle: Oracle) -> SolverOutput:
+        res = self.solve_form(OracleForm(oracle), oracle.x0)
+        return _output(res, self.max_steps)
+
+
+def _output(res: ThreePhaseResult, max_steps: int) -> SolverOutput:
+    """Status from the phase end reasons (shared with ETOPC)."""
+    reasons = [ph.reason for ph in res.phases]
+    msg = "; ".join(f"phase {ph.phase}: {ph.reason} after {ph.ng} gradients" for ph in res.phases)
+    if "nonfinite" in reasons:
+        status = Status.ERROR
+    elif res.converged:
+        status = Status.CONVERGED
+    else:
+        status = Status.MAX_ITER
+        msg += f" (cap {max_steps} per phase)"
+    extra = res.summary()
+    return SolverOutput(res.x, status, msg, nit=res.ng, extra=extra)
