@@ -1,0 +1,46 @@
+"""The rpr2 suite: problems, start values of Table 4.9, graceful infeasible designs, one short run."""
+
+import numpy as np
+import pytest
+
+from manipulators.synthesis.rpr2_suite import SUITE, e_problem, evaluate, o_problem, p_problem
+from solvers import solve
+
+
+def test_suite_cases():
+    ids = [c.case_id for c in SUITE.cases()]
+    assert len(ids) == 11 and "rpr2-p3/n=3/d0" in ids and "rpr2-o/n=5/SP4" in ids
+    assert {"dynamic-q", "sqsd", "scipy-cobyla"} <= set(SUITE.solvers)
+    assert SUITE.case("rpr2-o/n=5/SP1").problem.form == frozenset()
+    assert SUITE.case("rpr2-e/n=5/SP1").problem.form == {"eq"}
+    assert SUITE.case("rpr2-p1/n=3/d0").problem.form == {"ineq"}
+
+
+@pytest.mark.parametrize("name,f0", [("P1", 0.780), ("P2", 0.823), ("P3", 0.786)])
+def test_p_start_values_of_table_4_9(name, f0):
+    p = p_problem(name)
+    assert round(-p.objective(p.x0), 3) == f0
+    assert p.ineq(p.x0)[0] > 0  # d0 does not enclose P (Fig. 4.12a)
+
+
+@pytest.mark.parametrize("d", [[-4, -1, 4, -3, 3], [0, 0, 0, 3, 3], [-50, 0, 50, 1, 1], [np.nan, 0, 1, 3, 3]])
+def test_infeasible_designs_do_not_raise(d):
+    fo = o_problem("SP1").objective(np.array(d, float))
+    fe, he = e_problem("SP1").objective(np.array(d, float)), e_problem("SP1").eq(np.array(d, float))
+    area = 4.966
+    assert fo == pytest.approx(area / 2, abs=1e-2) and fe == 0.0 and he[0] == pytest.approx(area, abs=1e-2)
+    p = p_problem("P1")
+    assert np.isfinite(p.objective(np.array(d[:3], float))) or np.isnan(d[0])
+
+
+def test_thesis_p1_optimum_evaluates_to_its_published_values():
+    ev = evaluate("p", [-3.892, -1.016, 3.882], "P1")
+    assert ev["f"] == pytest.approx(0.952, abs=5e-4) and ev["g"] < 0
+    assert ev["f_thesis_points"] == pytest.approx(ev["f"], abs=1e-4)
+
+
+def test_p3_synthesis_short_cobyla_run_improves_and_encloses():
+    p = p_problem("P3")
+    r = solve(p, "scipy-cobyla", rhobeg=0.2, tol=1e-3, maxfev=60)
+    assert -r.f > 0.88 and r.max_violation <= 1e-6
+    assert evaluate("p", r.x, "P3")["enclosed"]
