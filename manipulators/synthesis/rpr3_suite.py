@@ -100,7 +100,10 @@ class _Evaluator:
         else:
             for phi in phis:
                 inside = float(np.max(m.constraints(O[None, :], phi))) < 0
-                out.append(m.workspace(phi, self.chord, **({"interior": O} if inside else {})))
+                try:
+                    out.append(m.workspace(phi, self.chord, **({"interior": O} if inside else {})))
+                except Exception as exc:  # noqa: BLE001  (this slice is empty)
+                    out.append(Workspace.empty(reason=f"{type(exc).__name__}: {exc}"))
         return out
 
     def __call__(self, d) -> tuple[RPR3 | None, list[Workspace]]:
@@ -135,14 +138,19 @@ class _Evaluator:
         return v if math.isfinite(v) else 0.0
 
     def parts(self, d) -> dict[str, Any]:
-        """dW_p per workspace (triangle scheme), gaps, and g (4.16 / 5.35 / 5.38 / 5.40)."""
+        """dW_p per workspace (triangle scheme), gaps, and g (4.16 / 5.35 / 5.38 / 5.40).
+
+        An empty slice contributes ``area(W_p) + violation`` to S, so g is consistent
+        across designs whose slices become empty one at a time.
+        """
         m, wss = self(d)
-        if any(w.n_boundary < 3 for w in wss):
-            viol = self._violation(m, d)
-            return {"g": float(self.P.area()) + viol, "dwp": [float(self.P.area())] * len(wss), "r": float("nan"),
-                    "empty": True, "n_b": [w.n_boundary for w in wss]}
-        dwp = [delta_areas(w, self.P)[0] for w in wss]
+        area = float(self.P.area())
+        empty = [w.n_boundary < 3 for w in wss]
+        viol = self._violation(m, d) if any(empty) else 0.0
+        dwp = [area + viol if e else delta_areas(w, self.P)[0] for w, e in zip(wss, empty)]
         S = float(sum(dwp))
+        if any(empty):
+            return {"g": S, "dwp": dwp, "r": float("nan"), "empty": True, "n_b": [w.n_boundary for w in wss]}
         r = float(min(np.min(np.abs(radial_gaps(w, self.P)[0])) for w in wss))
         return {"g": S if S > 0 else -r * r, "dwp": dwp, "r": r, "empty": False, "n_b": [w.n_boundary for w in wss]}
 
