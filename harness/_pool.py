@@ -31,9 +31,14 @@ def default_start_method() -> str:
     return "fork" if sys.platform.startswith("linux") else "spawn"
 
 
+READY = "ready"
+BOOT_LIMIT = 300.0  # seconds a new worker may take to import everything (spawn on a busy machine)
+
+
 def _worker_main(conn: Connection) -> None:
-    """Worker loop: receive a RunSpec, send back its row; stop on None or EOF."""
+    """Worker loop: announce readiness, then receive a RunSpec and send back its row."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's business
+    conn.send(READY)
     while True:
         try:
             spec = conn.recv()
@@ -45,7 +50,11 @@ def _worker_main(conn: Connection) -> None:
 
 
 class Slot:
-    """One worker process and its pipe."""
+    """One worker process and its pipe.
+
+    A run's time limit starts when the worker holds the spec *and* has finished booting
+    (the READY message), so slow imports in a fresh worker never count against a run.
+    """
 
     def __init__(self, ctx: Any):
         self.ctx = ctx
@@ -53,27 +62,51 @@ class Slot:
         self.proc = ctx.Process(target=_worker_main, args=(child,), daemon=True, name="harness-worker")
         self.proc.start()
         child.close()
+        self.ready = False
         self.spec: RunSpec | None = None
-        self.started = 0.0
-        self.deadline = float("inf")
+        self.started = time.perf_counter()
+        self.deadline = self.started + BOOT_LIMIT
+
+    def _start_clock(self) -> None:
+        self.started = time.perf_counter()
+        timeout = self.spec.timeout if self.spec is not None else 0.0
+        self.deadline = self.started + timeout if timeout > 0 else float("inf")
 
     def submit(self, spec: RunSpec) -> None:
-        self.spec, self.started = spec, time.perf_counter()
-        self.deadline = self.started + spec.timeout if spec.timeout > 0 else float("inf")
+        self.spec = spec
+        if self.ready:
+            self._start_clock()
         self.conn.send(spec)
 
-    def take(self) -> dict[str, Any]:
-        """The finished row (or an error row if the worker died)."""
-        spec, self.spec = self.spec, None
+    def receive(self) -> dict[str, Any] | None:
+        """The finished row; None for the READY message (the run's clock starts now)."""
         try:
-            return self.conn.recv()
+            msg = self.conn.recv()
         except (EOFError, OSError):
+            spec, self.spec = self.spec, None
             self.proc.join(1.0)
             code = self.proc.exitcode
             self.kill()
-            assert spec is not None
+            if spec is None:
+                return None
             return spec_row(spec, "error", f"worker process died (exit code {code})",
                             time.perf_counter() - self.started)
+        if isinstance(msg, str) and msg == READY:
+            self.ready = True
+            self._start_clock()
+            return None
+        self.spec = None
+        return msg
+
+    def timeout_row(self) -> dict[str, Any]:
+        """Kill an overdue worker; the row of the run it was doing (or of its failed boot)."""
+        spec, self.spec = self.spec, None
+        self.kill()
+        assert spec is not None
+        if not self.ready:
+            return spec_row(spec, "error", f"worker process did not start within {BOOT_LIMIT:g} s")
+        return spec_row(spec, "timeout", f"wall-clock limit of {spec.timeout:g} s exceeded",
+                        time.perf_counter() - self.started)
 
     def kill(self) -> None:
         if self.proc.is_alive():
@@ -96,13 +129,15 @@ class Slot:
     def run_one(self, spec: RunSpec) -> tuple[dict[str, Any], bool]:
         """Run one spec synchronously; returns (row, worker still usable)."""
         self.submit(spec)
-        remaining = None if self.deadline == float("inf") else max(0.0, self.deadline - time.perf_counter())
-        if self.conn.poll(remaining):
-            row = self.take()
-            return row, self.alive
-        self.kill()
-        return spec_row(spec, "timeout", f"wall-clock limit of {spec.timeout:g} s exceeded",
-                        time.perf_counter() - self.started), False
+        while True:
+            remaining = None if self.deadline == float("inf") else max(0.0, self.deadline - time.perf_counter())
+            if not self.conn.poll(remaining):
+                return self.timeout_row(), False
+            row = self.receive()
+            if row is not None:
+                return row, self.alive
+            if self.spec is None:  # died while booting
+                return spec_row(spec, "error", "worker process died while starting"), False
 
 
 class LocalPool:
@@ -127,8 +162,9 @@ class LocalPool:
                 s.close()
         self.slots = []
 
-    def map(self, specs: Iterable[RunSpec]) -> Iterator[dict[str, Any]]:
-        """Yield one row per spec, in completion order."""
+    def map(self, specs: Iterable[RunSpec], heartbeat: float | None = None) -> Iterator[dict[str, Any] | None]:
+        """Yield one row per spec, in completion order (and None every ``heartbeat``
+        seconds without a finished run, so the caller can report progress)."""
         queue = deque(specs)
         while len(self.slots) < min(self.jobs, len(queue)):
             self.slots.append(Slot(self.ctx))
@@ -142,17 +178,20 @@ class LocalPool:
                     busy[s.conn] = s
             now = time.perf_counter()
             nearest = min(s.deadline for s in busy.values())
-            ready = wait(list(busy), timeout=None if nearest == float("inf") else max(0.0, nearest - now))
+            limit = None if nearest == float("inf") else max(0.0, nearest - now)
+            if heartbeat is not None:
+                limit = heartbeat if limit is None else min(limit, heartbeat)
+            ready = wait(list(busy), timeout=limit)
+            if not ready and heartbeat is not None and time.perf_counter() < nearest:
+                yield None
             for conn in ready:
-                slot = busy.pop(conn)  # type: ignore[arg-type]
-                yield slot.take()  # a dead worker is replaced at the next submit
+                slot = busy[conn]  # type: ignore[index]
+                row = slot.receive()  # a dead worker is replaced at the next submit
+                if row is not None:
+                    del busy[conn]  # type: ignore[arg-type]
+                    yield row
             now = time.perf_counter()
             for conn, slot in list(busy.items()):
                 if now >= slot.deadline:
-                    spec = slot.spec
-                    assert spec is not None
-                    busy.pop(conn)
-                    slot.kill()
-                    slot.spec = None
-                    yield spec_row(spec, "timeout", f"wall-clock limit of {spec.timeout:g} s exceeded",
-                                   now - slot.started)
+                    del busy[conn]
+                    yield slot.timeout_row()

@@ -40,6 +40,13 @@ class Progress:
             self._last = now
             self._draw(now, final=False)
 
+    def tick(self) -> None:
+        """Redraw if due although no run finished (long runs: show the clock moving)."""
+        now = time.perf_counter()
+        if self.stream is not None and now - self._last >= max(self.interval, 1.0 if self.tty else 60.0):
+            self._last = now
+            self._draw(now, final=False)
+
     def _line(self, now: float) -> str:
         el = now - self.t0
         eta = el / self.done * (self.total - self.done) if self.done else float("nan")

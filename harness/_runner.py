@@ -26,6 +26,7 @@ from ._suites import SuiteRef, import_modules, ref_for
 __all__ = ["run_suite", "RunSummary", "resolve_suite"]
 
 CONSOLIDATE_EVERY = 60.0  # seconds between merges of pending run files into runs.parquet
+HEARTBEAT = 5.0  # seconds: progress is redrawn even while no run finishes
 
 
 @dataclasses.dataclass
@@ -65,10 +66,10 @@ def resolve_suite(suite: str | None = None, suite_file: str | os.PathLike[str] |
 
 
 def _execute(specs: list[RunSpec], executor: str, jobs: int, scheduler: str | None,
-             start_method: str | None) -> Iterator[dict[str, Any]]:
+             start_method: str | None) -> Iterator[dict[str, Any] | None]:
     if executor == "local":
         with LocalPool(jobs, start_method) as pool:
-            yield from pool.map(specs)
+            yield from pool.map(specs, heartbeat=HEARTBEAT)
     elif executor == "dask":
         from ._dask import dask_map
 
@@ -132,6 +133,9 @@ def run_suite(
         last = time.perf_counter()
         try:
             for row in _execute(todo, executor, jobs or os.cpu_count() or 1, scheduler, start_method):
+                if row is None:  # heartbeat: nothing finished lately
+                    bar.tick()
+                    continue
                 store.write_run(row)
                 summary.executed += 1
                 summary.failed += row["status"] in ("error", "timeout")

