@@ -103,8 +103,10 @@ def structure_matrix(ell: np.ndarray, a: np.ndarray, lengths: np.ndarray | None 
 
 
 def structure_rows(frame_points: np.ndarray, platform_points: np.ndarray, u: np.ndarray,
-                   phi: np.ndarray) -> tuple[np.ndarray, ...]:
+                   phi: np.ndarray | float) -> tuple[np.ndarray, ...]:
     """The rows of S (6.11) and the cable lengths, cable-major (fast path of the grids).
+
+    ``phi`` is one orientation (a float) or one per pose, shape (k,).
 
     Same quantities as `cable_vectors` / `structure_matrix`, laid out as (n, k) arrays
     (one contiguous row of k poses per cable): sums over cables are then additions of
@@ -115,12 +117,16 @@ def structure_rows(frame_points: np.ndarray, platform_points: np.ndarray, u: np.
     X, Y, M, lengths : ndarrays, shape (n, k)
         S[:, 0, :].T, S[:, 1, :].T, S[:, 2, :].T and l_i.
     """
-    c, s = np.cos(phi)[None, :], np.sin(phi)[None, :]
     px, py = platform_points[:, 0:1], platform_points[:, 1:2]
+    if np.ndim(phi) == 0:  # one orientation (a grid slice): a^i is the same for every pose
+        c, s = np.cos(phi), np.sin(phi)
+    else:
+        c, s = np.cos(phi)[None, :], np.sin(phi)[None, :]
     ax = c * px - s * py                                  # a^i(phi), eq. (6.3)
     ay = s * px + c * py
-    ex = frame_points[:, 0:1] - ax - u[None, :, 0]        # ell^i, eq. (6.2)
-    ey = frame_points[:, 1:2] - ay - u[None, :, 1]
+    ux, uy = np.ascontiguousarray(u[:, 0]), np.ascontiguousarray(u[:, 1])
+    ex = (frame_points[:, 0:1] - ax) - ux                 # ell^i, eq. (6.2)
+    ey = (frame_points[:, 1:2] - ay) - uy
     lengths = np.sqrt(ex * ex + ey * ey)                  # eq. (6.4)
     with np.errstate(invalid="ignore", divide="ignore"):  # zero-length cable -> NaN column
         inv = 1.0 / lengths

@@ -45,7 +45,11 @@ def feasible_poses(robot, U: np.ndarray, phi: np.ndarray, wrench: Any, tensions:
     """
     if tensions not in METHODS:
         raise ValueError(f"unknown tension method {tensions!r}; valid: {', '.join(METHODS)}")
-    U, phi = as_poses(U, phi)
+    if np.ndim(phi) == 0:  # one orientation for all poses (grid slices): the fast path
+        U = as_poses(U, 0.0)[0]
+        phi = float(phi)
+    else:
+        U, phi = as_poses(U, phi)
     X, Y, M, lengths = structure_rows(robot.frame_points, robot.platform_points, U, phi)
     w = robot._wrench(wrench, U.shape[0])
     method = tensions if (need_tensions or tensions == "min-norm") else "l1"
@@ -98,7 +102,7 @@ def _grid_workspace(robot, phi, wrench, resolution, tensions, keep_tensions):
     X, Y = np.meshgrid(x, y)
     U = np.column_stack([X.ravel(), Y.ravel()])
     need = keep_tensions and (tensions != "l2" or robot.n <= 4)  # exact l2 is vectorized for n <= 4
-    feas, T = feasible_poses(robot, U, np.full(U.shape[0], phi), wrench, tensions, need_tensions=need)
+    feas, T = feasible_poses(robot, U, phi, wrench, tensions, need_tensions=need)
     mask = feas.reshape(X.shape)
     info = {"n_points": int(U.shape[0]), "tensions_method": tensions, "phi": phi,
             "time": time.perf_counter() - t0}
@@ -137,7 +141,7 @@ def dextrous_workspace(robot, phi_min: float, phi_max: float, wrench: Any, resol
     has_mid = bool(np.any(np.isclose(phis, mid, rtol=0, atol=1e-14)))
     all_phis = phis if has_mid else np.append(phis, mid)
     # slice by slice: arrays of one grid stay in cache (faster than one stack of all poses)
-    F = np.stack([feasible_poses(robot, U, np.full(k, p), wrench, tensions)[0].reshape(X.shape)
+    F = np.stack([feasible_poses(robot, U, float(p), wrench, tensions)[0].reshape(X.shape)
                   for p in all_phis])
     mask = np.all(F[:s], axis=0)
     mid_mask = F[int(np.argmin(np.abs(all_phis - mid)))]
