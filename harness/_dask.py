@@ -25,6 +25,10 @@ _LOCAL = threading.local()
 
 
 def _context() -> Any:
+    import os
+
+    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(var, "1")  # run children share the Dask worker's cores
     try:
         ctx = mp.get_context("forkserver")
         ctx.set_forkserver_preload(["harness._worker"])
@@ -40,7 +44,7 @@ def _new_slot() -> Slot:
     # our child ends by itself when its pipe closes, so the rule's purpose is kept.
     proc._config["daemon"] = False  # type: ignore[attr-defined]
     try:
-        return Slot(_context())
+        return Slot(_context(), die_with_parent=False)  # forkserver is the parent
     finally:
         proc._config["daemon"] = daemon  # type: ignore[attr-defined]
 

@@ -13,6 +13,7 @@ solvers registered at run time in the parent (tests, notebooks) exist in the wor
 from __future__ import annotations
 
 import multiprocessing as mp
+import os
 import signal
 import sys
 import time
@@ -35,9 +36,26 @@ READY = "ready"
 BOOT_LIMIT = 300.0  # seconds a new worker may take to import everything (spawn on a busy machine)
 
 
-def _worker_main(conn: Connection) -> None:
+def _die_with_parent(parent: int) -> None:
+    """Linux: the kernel kills this worker when the harness dies (even by SIGKILL), so no
+    orphan goes on computing a run nobody will store."""
+    if not sys.platform.startswith("linux"):
+        return
+    try:
+        import ctypes
+
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent:  # the parent died before prctl took effect
+        os._exit(1)
+
+
+def _worker_main(conn: Connection, parent: int | None = None) -> None:
     """Worker loop: announce readiness, then receive a RunSpec and send back its row."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's business
+    if parent is not None:
+        _die_with_parent(parent)
     conn.send(READY)
     while True:
         try:
@@ -56,10 +74,11 @@ class Slot:
     (the READY message), so slow imports in a fresh worker never count against a run.
     """
 
-    def __init__(self, ctx: Any):
+    def __init__(self, ctx: Any, die_with_parent: bool = True):
         self.ctx = ctx
         self.conn, child = ctx.Pipe(duplex=True)
-        self.proc = ctx.Process(target=_worker_main, args=(child,), daemon=True, name="harness-worker")
+        parent = os.getpid() if die_with_parent else None
+        self.proc = ctx.Process(target=_worker_main, args=(child, parent), daemon=True, name="harness-worker")
         self.proc.start()
         child.close()
         self.ready = False

@@ -183,11 +183,26 @@ COMMANDS = {"run": _cmd_run, "table": _cmd_table, "list": _cmd_list, "plot": _cm
             "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline}
 
 
+def _terminate_as_interrupt() -> object:
+    """SIGTERM (e.g. a batch system's kill) ends a run like Ctrl-C: in-flight runs are
+    dropped, finished ones consolidated; SIGKILL loses nothing stored either."""
+    import signal
+    import threading
+
+    def handler(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt
+
+    if threading.current_thread() is threading.main_thread():
+        return signal.signal(signal.SIGTERM, handler)
+    return None
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status."""
     from ._api import NoResults
 
     args = _parser().parse_args(argv)
+    previous = _terminate_as_interrupt()
     try:
         return COMMANDS[args.command](args)
     except HarnessArgumentError as exc:
@@ -202,3 +217,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("interrupted: finished runs are stored; run again to resume", file=sys.stderr)
         return 130
+    finally:
+        if previous is not None:
+            import signal
+
+            signal.signal(signal.SIGTERM, previous)  # type: ignore[arg-type]

@@ -51,8 +51,18 @@ def test_kill_9_then_resume(tmp_path):
         if pending.is_dir() and len(list(pending.glob("*.json"))) >= 4:
             break
         time.sleep(0.02)
-    os.killpg(proc.pid, signal.SIGKILL)  # the harness and its workers, mid-suite
+    os.kill(proc.pid, signal.SIGKILL)  # the harness itself, mid-suite
     proc.wait()
+    # its workers die with it (no orphan goes on computing runs nobody will store)
+    for _ in range(200):
+        try:
+            os.killpg(proc.pid, 0)
+        except ProcessLookupError:
+            break
+        time.sleep(0.05)
+    else:
+        os.killpg(proc.pid, signal.SIGKILL)
+        raise AssertionError("worker processes outlived the killed harness")
     before = harness.load_results("napping", out)
     assert 4 <= len(before) < 16, len(before)
     s = harness.run_suite(suite_file=suite, out=out, jobs=2, progress=None)
@@ -64,3 +74,21 @@ def test_kill_9_then_resume(tmp_path):
     # rows stored before the kill are the same rows afterwards (not re-run)
     kept = after.set_index("run_key").loc[before.run_key, "finished_at"]
     assert list(kept) == list(before.finished_at)
+
+
+def test_sigterm_consolidates_and_exits_130(tmp_path):
+    suite = tmp_path / "napping.py"
+    suite.write_text(SUITE)
+    out = tmp_path / "res"
+    cmd = [sys.executable, "-m", "harness", "run", "--suite-file", str(suite), "--out", str(out), "--jobs", "2"]
+    proc = subprocess.Popen(cmd, cwd=os.path.dirname(harness.__path__[0]), start_new_session=True,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    pending = out / "napping" / "runs"
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline and not (pending.is_dir() and len(list(pending.glob("*.json"))) >= 2):
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 130 and "resume" in err
+    assert (out / "napping" / "runs.parquet").exists() and not list(pending.glob("*.json"))
+    assert 2 <= len(harness.load_results("napping", out)) < 16
