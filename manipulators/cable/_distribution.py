@@ -28,7 +28,6 @@ import itertools
 
 import numpy as np
 
-from ._geometry import det3
 
 __all__ = ["METHODS", "min_norm", "interval_4", "vertices", "distribute", "SINGULAR_TOL"]
 

@@ -135,7 +135,6 @@ def dextrous_workspace(robot, phi_min: float, phi_max: float, wrench: Any, resol
     x, y = grid_axes(robot, resolution)
     X, Y = np.meshgrid(x, y)
     U = np.column_stack([X.ravel(), Y.ravel()])
-    k = U.shape[0]
     phis = np.linspace(phi_min, phi_max, s)
     mid = 0.5 * (phi_min + phi_max)
     has_mid = bool(np.any(np.isclose(phis, mid, rtol=0, atol=1e-14)))
