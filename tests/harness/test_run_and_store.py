@@ -103,3 +103,22 @@ def test_cli_run_table_list(tiny_file, tmp_path, capsys):
 def test_table_without_plugin_or_results(tmp_path, capsys):
     assert main(["table", "--suite", "appendix-a", "--out", str(tmp_path)]) == 1
     assert "no results" in capsys.readouterr().err
+
+
+def test_progress_bar_and_plain_lines():
+    import io
+
+    from harness._progress import Progress
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    plain, tty = io.StringIO(), Tty()
+    for stream in (plain, tty):
+        p = Progress("s", 3, stream, interval=0.0)
+        for st in ("converged", "error", "timeout"):
+            p.update({"status": st})
+        p.close()
+    assert plain.getvalue().splitlines()[-1].startswith("s: 3/3 runs, 2 failed") and "\r" not in plain.getvalue()
+    assert "\r[" in tty.getvalue() and "ETA" in tty.getvalue() and tty.getvalue().endswith("\n")
