@@ -40,12 +40,16 @@ class AbstractScipyMinimize(AbstractSolver):
 
     eps_g: float = option(1e-5, "gradient tolerance (SciPy gtol)", "Sec. 2.5 eps_g")
     max_iter: int = option(20_000, "iteration cap (SciPy maxiter)", "Tables 2.1-2.2 caps")
+    max_fg: int | None = option(None, "cap on N^fg, checked after each iteration (None = no cap)",
+                                "Tables 2.1-2.2 print '> N' in the N^fg column")
 
     def __post_init__(self) -> None:
         if not self.eps_g >= 0:
             raise ValueError(f"{self.name}: eps_g must be >= 0, got {self.eps_g}")
         if self.max_iter < 1:
             raise ValueError(f"{self.name}: max_iter must be >= 1, got {self.max_iter}")
+        if self.max_fg is not None and self.max_fg < 1:
+            raise ValueError(f"{self.name}: max_fg must be >= 1 or None, got {self.max_fg}")
 
     def _options(self) -> dict[str, Any]:
         raise NotImplementedError
@@ -59,10 +63,20 @@ class AbstractScipyMinimize(AbstractSolver):
         return cls.STATUS_MAP.get(int(status), Status.FAILED)
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
+        capped = []
+
+        def callback(intermediate_result):
+            # SciPy ends the run when a callback raises StopIteration (status 99)
+            if self.max_fg is not None and oracle.nfg >= self.max_fg:
+                capped.append(oracle.nfg)
+                raise StopIteration
+
         res = minimize(oracle.f_and_grad, oracle.x0, jac=True, method=self.method,
-                       bounds=self._bounds(oracle), options=self._options())
-        status = self.map_status(res.status)
-        return SolverOutput(np.asarray(res.x, dtype=float), status, f"scipy {self.method}: {res.message}",
+                       bounds=self._bounds(oracle), options=self._options(), callback=callback)
+        status, message = self.map_status(res.status), f"scipy {self.method}: {res.message}"
+        if capped:
+            status, message = Status.MAX_ITER, f"N^fg cap max_fg = {self.max_fg} reached"
+        return SolverOutput(np.asarray(res.x, dtype=float), status, message,
                             nit=int(getattr(res, "nit", 0) or 0), extra={"scipy_status": int(res.status)})
 
 

@@ -56,7 +56,7 @@ def make_case(problem_id: str, n: int | None = None, *, rho: float | None = None
         "*": tolerances_for(problem_id, n),
         "sqsd": {"rho": rho_for(problem_id, n) if rho is None else rho},
         **{s: {"max_fg": cap, "max_iter": cap} for s in COMPARISON_SOLVERS},
-        **{s: {"max_iter": cap} for s in SCIPY_SOLVERS},
+        **{s: {"max_fg": cap, "max_iter": cap} for s in SCIPY_SOLVERS},
     }
     meta = {"thesis_problem": thesis_label(problem_id), "cap": cap, **_META.get(problem_id, {})}
     if variant:
