@@ -25,16 +25,22 @@ import numpy as np
 
 __all__ = ["Active", "PenaltyForm", "OracleForm", "PhaseRecord", "ThreePhaseResult", "three_phase"]
 
-Core = Callable[[Callable[[np.ndarray], np.ndarray], np.ndarray], Any]
+Core = Callable[..., Any]
 
 
 @dataclasses.dataclass(frozen=True)
 class Active:
-    """Constraints penalised in phase 2: boolean masks over g, lower and upper bounds."""
+    """Constraints penalised in phase 2: boolean masks over g, lower and upper bounds.
+
+    ``exterior``: the inactive inequalities and bounds keep their exterior penalty in
+    phase 2 ([OWN]; eq. B.7 drops them, which lets phase 2 run off to a distant
+    intersection of the active constraints when the subproblem is non-convex).
+    """
 
     ineq: np.ndarray
     lower: np.ndarray
     upper: np.ndarray
+    exterior: bool = True
 
     @property
     def count(self) -> int:
@@ -59,12 +65,13 @@ class _BoundsMixin:
     def _bound_penalty_grad(self, x: np.ndarray, two_mu: float, active: Active | None) -> np.ndarray:
         if active is None:  # exterior penalty: only violated bounds
             return two_mu * (np.minimum(x - self.lower, 0.0) + np.maximum(x - self.upper, 0.0))
-        out = np.zeros_like(x)
-        if active.lower.any():
-            out[active.lower] += two_mu * (x - self.lower)[active.lower]
-        if active.upper.any():
-            out[active.upper] += two_mu * (x - self.upper)[active.upper]
-        return out
+        if active.exterior:
+            lo = np.where(active.lower, x - self.lower, np.minimum(x - self.lower, 0.0))
+            up = np.where(active.upper, x - self.upper, np.maximum(x - self.upper, 0.0))
+        else:
+            lo = np.where(active.lower, x - self.lower, 0.0)
+            up = np.where(active.upper, x - self.upper, 0.0)
+        return two_mu * (np.where(np.isfinite(lo), lo, 0.0) + np.where(np.isfinite(up), up, 0.0))
 
     def _bound_active(self, x: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
         return (self.lower - x) > tol, (x - self.upper) > tol
@@ -153,20 +160,22 @@ class PenaltyForm(_BoundsMixin):
                     gr = gr + two_mu * (self.ineq_jac(x).T @ w)
         else:
             gr = np.zeros(self.n)
-            if active.ineq.any():
-                w = np.where(active.ineq, self.ineq(x), 0.0)
-                gr = gr + two_mu * (self.ineq_jac(x).T @ w)
+            if active.ineq.any() or (active.exterior and self.has_ineq):
+                g = self.ineq(x)
+                w = np.where(active.ineq, g, np.maximum(g, 0.0) if active.exterior else 0.0)
+                if w.any():
+                    gr = gr + two_mu * (self.ineq_jac(x).T @ w)
         if self.has_eq:
             gr = gr + two_mu * (self.eq_jac(x).T @ self.eq(x))
         if self.has_bounds:
             gr = gr + self._bound_penalty_grad(x, two_mu, active)
         return gr
 
-    def active_set(self, x: np.ndarray, tol: float = 0.0) -> Active:
+    def active_set(self, x: np.ndarray, tol: float = 0.0, exterior: bool = True) -> Active:
         """I_a = {j : g_j(x) > tol} over inequalities and bounds (Appendix B.4, phase 1)."""
         g = self.ineq(x) if self.has_ineq else np.zeros(0)
         lo, up = self._bound_active(x, tol)
-        return Active(g > tol, lo, up)
+        return Active(g > tol, lo, up, exterior)
 
     def max_violation(self, x: np.ndarray) -> float:
         v = self._bound_violation(x)
@@ -244,25 +253,35 @@ class ThreePhaseResult:
 
 
 def three_phase(form: PenaltyForm, x0: np.ndarray, core: Core, mu0: float, mu1: float,
-                active_tol: float = 0.0, phase2: bool = True) -> ThreePhaseResult:
+                active_tol: float = 0.0, phase2: bool = True, phase2_exterior: bool = True,
+                carry_dt: bool = False) -> ThreePhaseResult:
     """Appendix B.4: phase 0 on Q(., mu0), phase 1 on Q(., mu1), phase 2 on Q_a(., mu1).
 
     ``core(grad, x)`` is an unconstrained gradient-only minimizer returning an object
     with ``x``, ``ng``, ``reason``, ``grad_norm`` (LFOP or ETOP); every phase restarts it.
     Phase 2 is skipped when there is no active inequality and no equality.
+    ``phase2_exterior`` keeps the exterior penalty on the inactive inequalities in
+    phase 2 (see `Active`); False gives eq. (B.7) literally.
+    ``carry_dt``: start each phase with the time step the previous phase ended with
+    (scaled by sqrt(mu0/mu1) from phase 0 to 1, since the wall stiffness scales with
+    mu); ``core`` must then accept ``dt_init`` and return ``dt`` (LFOP).  [OWN]: a phase
+    that restarts with dt0 next to a stiff wall first leaps far across it.
     """
     phases: list[PhaseRecord] = []
     x = np.array(x0, dtype=float).reshape(-1)
+    kw: dict[str, Any] = {}
     for ph, mu in ((0, mu0), (1, mu1)):
-        r = core(lambda z, mu=mu: form.grad_Q(z, mu), x)
+        r = core(lambda z, mu=mu: form.grad_Q(z, mu), x, **kw)
         phases.append(PhaseRecord(ph, mu, r.ng, r.reason, r.grad_norm))
         x = r.x
+        if carry_dt:
+            kw = {"dt_init": r.dt * (np.sqrt(mu0 / mu1) if ph == 0 else 1.0)}
         if r.reason == "nonfinite":
             break
     x_mu1 = x
-    active = form.active_set(x, active_tol)
+    active = form.active_set(x, active_tol, phase2_exterior)
     if phase2 and (active.count or form.has_eq) and phases[-1].reason != "nonfinite":
-        r = core(lambda z: form.grad_Q(z, mu1, active), x)
+        r = core(lambda z: form.grad_Q(z, mu1, active), x, **kw)
         phases.append(PhaseRecord(2, mu1, r.ng, r.reason, r.grad_norm))
         x = r.x
     ng = sum(ph.ng for ph in phases)

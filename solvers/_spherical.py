@@ -95,11 +95,13 @@ class SphericalSubproblem(PenaltyForm):
                 gr = gr + (2.0 * two_mu * gm * ms) * e
         else:
             gr = np.zeros(self.n)
-            act = active.ineq
-            if self._np and act[:-1].any():
-                w = np.where(act[:-1], self.g0 + self.Jg @ d + 0.5 * self.b * dd, 0.0)
-                gr = gr + two_mu * (self.Jg.T @ w + d * float(w @ self.b))
-            if act[-1]:
+            act, ext = active.ineq, active.exterior
+            if self._np and (ext or act[:-1].any()):
+                g = self.g0 + self.Jg @ d + 0.5 * self.b * dd
+                w = np.where(act[:-1], g, np.maximum(g, 0.0) if ext else 0.0)
+                if w.any():
+                    gr = gr + two_mu * (self.Jg.T @ w + d * float(w @ self.b))
+            if act[-1] or (ext and gm > 0.0):
                 gr = gr + (2.0 * two_mu * gm * ms) * e
         if self.q:
             ht = self.h0 + self.Jh @ d + 0.5 * self.c * dd

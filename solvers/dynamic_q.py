@@ -25,6 +25,7 @@ __all__ = ["DynamicQ"]
 
 CLIPS = ("none", "sqsd", "saoi")
 CENTRES = ("current", "literal")
+NORMALIZE = ("cap", "unit", "none")
 SQSD_C_MIN = 1e-60  # Algorithm 2.2: replacement for a negative curvature
 SAOI_A_MIN = 1e-5  # SAOi defaults.f atol1
 
@@ -62,10 +63,10 @@ class DynamicQ(AbstractSolver):
                               "eq. (3.8) text; resolution [OWN] algorithms.md 4.2")
     rho_reduction: bool = option(False, "halve rho when feasible f rises above f_best or steps reverse",
                                  "[OWN] algorithms.md 4.5 (off reproduces the thesis)")
-    normalize_constraints: bool = option(True, "scale each approximate constraint of P[i] by 1/||grad|| at x^i "
-                                         "(and the move limit by 1/(2 rho)); same feasible set, "
-                                         "penalty stiffness mu instead of mu ||grad g||^2",
-                                         "[OWN] (makes LFOPC's phase 1 converge within its step cap)")
+    normalize_constraints: str = option("cap", "scale the approximate constraints of P[i] by 1/||grad|| at x^i: "
+                                        "'unit' always, 'cap' only where ||grad|| > 1 (penalty stiffness at most "
+                                        "~2 mu), 'none' (as printed); the move limit likewise by 1/(2 rho)",
+                                        "[OWN] (same feasible set; keeps LFOPC's phase 1 within its step cap)")
     clip_to_bounds: bool = option(True, "project the subproblem solution onto the exact bounds (3.7)",
                                   "[OWN]: the bounds are exact, LFOPC's penalty leaves ~1e-9 excess")
 
@@ -82,6 +83,9 @@ class DynamicQ(AbstractSolver):
             raise ValueError(f"dynamic-q: max_iter must be an integer >= 1, got {self.max_iter!r}")
         if not isinstance(self.subsolver, LFOPC):
             raise ValueError(f"dynamic-q: subsolver must be an LFOPC instance, got {type(self.subsolver).__name__}")
+        if self.normalize_constraints not in NORMALIZE:
+            raise ValueError(f"dynamic-q: normalize_constraints must be one of {NORMALIZE}, "
+                             f"got {self.normalize_constraints!r}")
         if self.curvature_clip not in CLIPS:
             raise ValueError(f"dynamic-q: curvature_clip must be one of {CLIPS}, got {self.curvature_clip!r}")
         if self.move_centre not in CENTRES:
@@ -177,16 +181,17 @@ class DynamicQ(AbstractSolver):
                             nit=self.max_iter, extra=self._extra(log, n_sub_steps, f_best))
 
     def _subproblem(self, x, ev, curv, lo, up, centre, rho) -> SphericalSubproblem:
-        """P[i] (3.9); with ``normalize_constraints`` every g~_j, h~_k is divided by ||grad||."""
+        """P[i] (3.9); with ``normalize_constraints`` g~_j, h~_k are divided by ||grad|| (see the option)."""
         g0, Jg, b = ev["ineq"], ev["ineq_jac"], curv[1]
         h0, Jh, c = ev["eq"], ev["eq_jac"], curv[2]
         ms = 1.0
-        if self.normalize_constraints:
-            sg = 1.0 / np.maximum(np.linalg.norm(Jg, axis=1), 1e-12)
-            sh = 1.0 / np.maximum(np.linalg.norm(Jh, axis=1), 1e-12)
+        if self.normalize_constraints != "none":
+            floor = 1.0 if self.normalize_constraints == "cap" else 1e-12
+            sg = 1.0 / np.maximum(np.linalg.norm(Jg, axis=1), floor)
+            sh = 1.0 / np.maximum(np.linalg.norm(Jh, axis=1), floor)
             g0, Jg, b = g0 * sg, Jg * sg[:, None], b * sg
             h0, Jh, c = h0 * sh, Jh * sh[:, None], c * sh
-            ms = 0.5 / rho
+            ms = 1.0 / max(2.0 * rho, floor)
         return SphericalSubproblem(x, ev["g"], curv[0], g0, Jg, b, h0, Jh, c, lo, up, centre, rho, ms)
 
     @staticmethod

@@ -42,6 +42,9 @@ class ETOPC(AbstractSolver):
 
     mu0: float = option(1e2, "phase-0 penalty parameter", "App. B.4 [THESIS] (by analogy with LFOPC [OWN])")
     mu1: float = option(1e4, "phase-1/2 penalty parameter", "App. B.4 [THESIS] (by analogy with LFOPC [OWN])")
+    phase2_exterior: bool = option(True, "keep the exterior penalty on inactive inequalities in phase 2 "
+                                   "(False: eq. B.7 literally)", "[OWN] (B.7 lets phase 2 run away on "
+                                   "non-convex subproblems, e.g. Dynamic-Q on HS23)")
     active_tol: float = option(0.0, "g_j(x*(mu1)) > active_tol marks constraint j active for phase 2", "[OWN]")
     beta: str = option("PR", "'PR' (Polak-Ribiere+, used in the thesis) or 'FR'", "Sec. 4.4 [THESIS]; PR+ [OWN]")
     eps_g: float = option(1e-5, "per-phase stop: ||grad Q|| <= eps_g", "[OWN] (Ch. 4 used 1e-3)")
@@ -67,7 +70,8 @@ class ETOPC(AbstractSolver):
     def solve_form(self, form: PenaltyForm, x0: np.ndarray) -> ThreePhaseResult:
         """Run the three phases on a penalty form from ``x0``."""
         params = self.etop_params()
-        return three_phase(form, x0, lambda grad, x: etop(grad, x, params), self.mu0, self.mu1, self.active_tol)
+        return three_phase(form, x0, lambda grad, x: etop(grad, x, params), self.mu0, self.mu1, self.active_tol,
+                           phase2_exterior=self.phase2_exterior)
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         out = _output(self.solve_form(OracleForm(oracle), oracle.x0), self.max_steps)

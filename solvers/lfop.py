@@ -102,13 +102,15 @@ class LfopResult:
     grad_norm: float
     n_interferences: int = 0
     n_halvings: int = 0
+    dt: float = float("nan")  # time step at the end of the run
 
 
 def _norm(v: np.ndarray) -> float:
     return math.sqrt(float(v @ v))
 
 
-def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopParams = LfopParams()) -> LfopResult:
+def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopParams = LfopParams(),
+         dt_init: float | None = None) -> LfopResult:
     """Minimize by the leap-frog dynamic trajectory method (algorithms.md section 1.3).
 
     Parameters
@@ -117,6 +119,9 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
         Gradient of the function to minimize (for LFOPC: of the penalty function Q).
     x0 : array_like, shape (n,)
     params : LfopParams
+    dt_init : float, optional
+        Initial time step overriding ``params.dt0``/``dt_mode`` (LFOPC passes the
+        step reached in the previous penalty phase).
 
     Returns
     -------
@@ -133,7 +138,10 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
         return LfopResult(x, ng, "nonfinite", anorm)
     if anorm <= P.eps_g:  # section 1.5 c: stationary start
         return LfopResult(x, ng, "eps_g", anorm)
-    dt = P.dt0 if P.dt_mode == "fixed" else math.sqrt(P.delta / (5.0 * anorm))
+    if dt_init is not None and math.isfinite(dt_init) and dt_init > 0:
+        dt = float(dt_init)
+    else:
+        dt = P.dt0 if P.dt_mode == "fixed" else math.sqrt(P.delta / (5.0 * anorm))
     v = 0.5 * a * dt  # v^0 = a^0 dt / 2  (eq. B.4)
     x_prev = x
     v_prev = v
@@ -166,7 +174,7 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
         x = x + v * dt
         if eps_x > 0.0 and _norm(x - x_prev) < eps_x:
             g = np.asarray(grad(x), dtype=float).reshape(-1)
-            return LfopResult(x, ng + 1, "eps_x", _norm(g), n_int, n_half)
+            return LfopResult(x, ng + 1, "eps_x", _norm(g), n_int, n_half, dt)
         while True:
             # Step 6: kick
             a_new = -np.asarray(grad(x), dtype=float).reshape(-1)
@@ -194,12 +202,12 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
             anorm = _norm(a)
             # Step 8: termination
             if not math.isfinite(anorm):
-                return LfopResult(last[0], ng, "nonfinite", last[1], n_int, n_half)
+                return LfopResult(last[0], ng, "nonfinite", last[1], n_int, n_half, dt)
             last = (x, anorm)
             if anorm <= eps_g:
-                return LfopResult(x, ng, "eps_g", anorm, n_int, n_half)
+                return LfopResult(x, ng, "eps_g", anorm, n_int, n_half, dt)
             if ng >= P.max_steps:
-                return LfopResult(x, ng, "max_steps", anorm, n_int, n_half)
+                return LfopResult(x, ng, "max_steps", anorm, n_int, n_half, dt)
             # Step 9: energy test; interference when kinetic energy does not grow (eq. B.5)
             if float(v @ v) > float(v_prev @ v_prev):
                 i = 0

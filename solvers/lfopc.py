@@ -54,6 +54,12 @@ class LFOPC(AbstractSolver):
 
     mu0: float = option(1e2, "phase-0 penalty parameter", "App. B.4 [THESIS]")
     mu1: float = option(1e4, "phase-1/2 penalty parameter", "App. B.4 [THESIS]")
+    phase2_exterior: bool = option(True, "keep the exterior penalty on inactive inequalities in phase 2 "
+                                   "(False: eq. B.7 literally)", "[OWN] (B.7 lets phase 2 run away on "
+                                   "non-convex subproblems, e.g. Dynamic-Q on HS23)")
+    carry_dt: bool = option(True, "start phases 1 and 2 with the time step reached in the previous phase "
+                            "(x sqrt(mu0/mu1) into phase 1) instead of dt0", "[OWN] (dt0 next to a stiff wall "
+                            "first leaps far across it)")
     active_tol: float = option(0.0, "g_j(x*(mu1)) > active_tol marks constraint j active for phase 2",
                                "App. B.4 '> 0' [THESIS]; tolerance [OWN]")
     delta: float = option(1.0, "LFOP maximum step length", "[CILIB] LFDecorator delta = 1; [MLA3]")
@@ -88,7 +94,8 @@ class LFOPC(AbstractSolver):
     def solve_form(self, form: PenaltyForm, x0: np.ndarray) -> ThreePhaseResult:
         """Run the three phases on a penalty form from ``x0`` (no function values used)."""
         params = self.lfop_params()
-        return three_phase(form, x0, lambda grad, x: lfop(grad, x, params), self.mu0, self.mu1, self.active_tol)
+        return three_phase(form, x0, lambda grad, x, **kw: lfop(grad, x, params, **kw), self.mu0, self.mu1,
+                           self.active_tol, phase2_exterior=self.phase2_exterior, carry_dt=self.carry_dt)
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         res = self.solve_form(OracleForm(oracle), oracle.x0)

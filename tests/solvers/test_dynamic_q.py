@@ -1,0 +1,89 @@
+"""Dynamic-Q (thesis Algorithm 3.2; algorithms.md section 4)."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize as sp_minimize
+
+from problems import Oracle, Problem
+from solvers import Status, solve
+from solvers.dynamic_q import DynamicQ
+from solvers.lfopc import LFOPC
+
+from _hs_inline import ALL, THESIS_NFG, hs010, hs076
+
+
+@pytest.mark.parametrize("make", ALL, ids=[m.__name__ for m in ALL])
+def test_hs_problems_of_the_prototype(make):
+    # algorithms.md 4.6 / 6: HS10, 12, 22, 71, 76 with the thesis settings (rho = 1,
+    # eps_x = 1e-5, eps_f = 1e-8, eps_c = 1e-6)
+    p = make()
+    r = solve(p, "dynamic-q")
+    er = abs(r.f - p.f_ref) / (1 + abs(p.f_ref))
+    assert r.status is Status.CONVERGED and r.success
+    assert er <= 1e-5 and r.max_violation <= 1e-6
+    # N^fg measured by the oracle, within 0.5-2x of the thesis's count
+    assert 0.5 * THESIS_NFG[p.name] <= r.nfg <= 2 * THESIS_NFG[p.name]
+    assert r.nfg == r.nit + 1  # one oracle point per outer iterate, x0 included
+
+
+def test_one_oracle_point_per_iterate_and_subproblems_are_free():
+    p = hs076()
+    o = Oracle(p)
+    out = DynamicQ().minimize(o)
+    assert o.nfg == len(out.extra["iterations"])
+    assert o.nf == o.ng == o.nfg  # f and grad f once per iterate
+    assert out.extra["n_sub_steps"] > o.nfg  # LFOPC's steps on P[i] are not oracle calls
+
+
+def test_composition_subsolver_options_are_used_and_reported():
+    s = DynamicQ(subsolver=LFOPC(mu1=1e5, max_steps=3000))
+    r = solve(hs010(), s)
+    assert r.success
+    assert r.options["subsolver"]["solver"] == "lfopc" and r.options["subsolver"]["mu1"] == 1e5
+    assert dataclasses.replace(s, rho=0.5).subsolver is s.subsolver
+
+
+def test_deterministic_counts():
+    a = solve(hs076(), "dynamic-q")
+    b = solve(hs076(), "dynamic-q")
+    assert a.nfg == b.nfg and np.array_equal(a.x, b.x)
+
+
+@pytest.mark.parametrize("opts", [dict(move_centre="literal"), dict(curvature_clip="sqsd"),
+                                  dict(curvature_clip="saoi"), dict(normalize_constraints="none"),
+                                  dict(rho_reduction=True)])
+def test_options_run(opts):
+    r = solve(hs076(), "dynamic-q", **opts)
+    assert r.max_violation <= 1e-6 and abs(r.f + 4.681818181818182) < 1e-4
+
+
+def test_finite_difference_design_problem():
+    # the manipulator-synthesis setting: FD gradients, n = 3, small rho, loose tolerances
+    def f(x):
+        return (x[0] - 2) ** 2 + (x[1] - 1) ** 2 + x[2] ** 2 + 0.3 * np.sin(x[0] * x[1])
+
+    def g(x):
+        return np.array([x @ x - 4.0, x[0] - x[1] - 0.5])
+
+    p = Problem(name="fd3", x0=[0.5, 0.5, 0.5], objective=f, ineq=g, lower=0.0, upper=3.0, fd_step=1e-6)
+    ref = sp_minimize(f, p.x0, method="SLSQP", bounds=[(0, 3)] * 3,
+                      constraints=[{"type": "ineq", "fun": lambda x: -g(x)}], options={"ftol": 1e-12})
+    r = solve(p, "dynamic-q", rho=0.1, eps_f=1e-5, eps_x=1e-4)
+    assert r.status is Status.CONVERGED
+    assert r.max_violation <= 1e-6
+    assert abs(r.f - ref.fun) <= 1e-4 * (1 + abs(ref.fun))
+    assert r.nf >= (p.n + 1) * r.nfg - 1  # forward differences are counted
+
+
+def test_max_iter_status():
+    r = solve(hs010(), "dynamic-q", max_iter=3)
+    assert r.status is Status.MAX_ITER and r.nfg == 4
+
+
+@pytest.mark.parametrize("bad", [dict(rho=0.0), dict(eps_x=-1.0), dict(max_iter=0), dict(curvature_clip="x"),
+                                 dict(move_centre="x"), dict(normalize_constraints="x"), dict(subsolver="lfopc")])
+def test_invalid_options(bad):
+    with pytest.raises(ValueError, match="dynamic-q"):
+        DynamicQ(**bad)
