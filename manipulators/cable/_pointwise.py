@@ -5,18 +5,14 @@ constrained l1 problem (6.19) is a linear program. These per-pose solvers are th
 reference (and the thesis's own method) against which the closed forms of
 `_distribution` are tested and timed:
 
-* ``lfopc``: problem (6.17) in the thesis's reduced variables t^B (n - 3 independent
-  tensions; t^A = M + N t^B, eq. 6.16) with the in-house LFOPC through `solvers.solve`.
-  A is the 3 x 3 block of the three cables with the best-conditioned minor (the thesis
-  takes cables 1-3; any invertible choice gives the same problem). Variables and
+* ``lfopc``: problem (6.17) with the in-house LFOPC through `solvers.solve`, as in the
+  thesis (see `lfopc_l2` for why the tensions are not eliminated first). Variables and
   objective are scaled by t_max so that the penalty parameters of Appendix B fit.
 * ``osqp``, ``clarabel``: l2 (QP) and l1 (LP) through cvxpy (`solvers.convex`).
 * ``highs`` (cvxpy), ``linprog`` (SciPy HiGHS): l1 (LP).
 """
 
 from __future__ import annotations
-
-import itertools
 
 import numpy as np
 
@@ -37,48 +33,45 @@ _SUPPORTS = {
 def lfopc_l2(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, feas_tol: float = 1e-6):
     """Problem (6.17) for one pose with the in-house LFOPC; (t or None, Result).
 
-    Feasible iff LFOPC's final point violates no tension bound by more than
-    ``feas_tol * t_max`` (LFOPC is a penalty method and returns a compromise point when
-    the problem is infeasible, Appendix B).
+    Posed in all n tensions, scaled by t_max (x = t / t_max): minimize ||x||^2 subject to
+    the equilibrium S x + w / t_max = 0 (equalities, rows whitened) and the bounds
+    (inequalities). This
+    is the thesis's problem (6.17) without the elimination t^A = M + N t^B (6.16). The
+    elimination makes the objective anisotropic (Hessian 2 (I + N^T N)); LFOPC's phase-2
+    projection of its penalty solution onto the active constraints (Appendix B) then
+    leaves errors of order 1/mu_1 along them (~1e-3 tension units, measured), while with
+    the isotropic objective of the full form the projection is exact.
+
+    Feasible iff LFOPC's final point violates no bound by more than ``feas_tol * t_max``
+    and equilibrium by more than ``feas_tol`` (LFOPC is a penalty method and returns a
+    compromise point when the problem is infeasible, Appendix B).
     """
     from problems import Problem
     from solvers import solve
 
     n = S.shape[1]
-    # A: the three cables with the largest |det| minor (well-conditioned t^A(t^B), eq. 6.16)
-    best = max(itertools.combinations(range(n), 3), key=lambda F: abs(np.linalg.det(S[:, list(F)])))
-    Acols, Bcols = list(best), [c for c in range(n) if c not in best]
-    Ainv = np.linalg.inv(S[:, Acols])
-    M = -Ainv @ w                    # eq. (6.19): M = -A^{-1} f^P
-    N = -Ainv @ S[:, Bcols]          # N = -A^{-1} B
-    s = t_max                        # scale: x = t^B / t_max
-
-    def tensions(x):
-        t = np.empty(n)
-        t[Bcols] = s * x
-        t[Acols] = M + N @ (s * x)
-        return t
-
-    def f(x):
-        return float(np.sum((tensions(x) / s) ** 2))
-
-    def grad(x):  # f = ||x||^2 + ||u_A||^2 with u_A = t^A / t_max = M / s + N x
-        return 2.0 * (x + N.T @ ((M + N @ (s * x)) / s))
-
-    def g(x):  # t_min <= t^A, t^A <= t_max, t_min <= t^B <= t_max, all scaled
-        tA = M + N @ (s * x)
-        return np.concatenate([(t_min - tA) / s, (tA - t_max) / s, t_min / s - x, x - t_max / s])
-
-    nb = len(Bcols)
-    jac = np.vstack([-N, N, -np.eye(nb), np.eye(nb)])
-    tp = min_norm(S[None], w[None])[0]
-    x0 = np.clip(tp[Bcols], t_min, t_max) / s
-    prob = Problem("cable-l2", x0, f, gradient=grad, ineq=g, ineq_jacobian=lambda x: jac,
+    s = t_max
+    lo, hi = t_min / s, t_max / s
+    I = np.eye(n)
+    jac_g = np.vstack([-I, I])
+    # equilibrium rows whitened, E = (S S^T)^{-1/2} S (orthonormal rows, same solution set):
+    # near-singular poses otherwise get a soft penalty mu sigma^2 along S's weak direction
+    lam, V = np.linalg.eigh(S @ S.T)
+    Wh = (V / np.sqrt(np.maximum(lam, 1e-300))) @ V.T
+    E, e = Wh @ S, Wh @ (w / s)
+    x0 = np.clip(min_norm(S[None], w[None])[0], t_min, t_max) / s
+    prob = Problem("cable-l2", x0, lambda x: float(x @ x), gradient=lambda x: 2.0 * x,
+                   ineq=lambda x: np.concatenate([lo - x, x - hi]), ineq_jacobian=lambda x: jac_g,
+                   eq=lambda x: E @ x + e, eq_jacobian=lambda x: E,
                    source="thesis eq. (6.17)")
-    res = solve(prob, "lfopc")
-    t = tensions(res.x)
+    # phase 2 on the active constraints only (Appendix B, eq. B.7, as in the thesis): the
+    # variant that keeps exterior penalties on inactive constraints in phase 2 was seen to
+    # drift along the active constraint here (errors of several tension units)
+    res = solve(prob, "lfopc", phase2_exterior=False, eps_g=1e-7)
+    t = s * res.x
     viol = max(0.0, float(np.max(t_min - t)), float(np.max(t - t_max)))
-    return (t if viol <= feas_tol * t_max else None), res
+    ok = viol <= feas_tol * t_max and float(np.max(np.abs(S @ t + w))) <= feas_tol * max(1.0, t_max)
+    return (t if ok else None), res
 
 
 def solve_pointwise(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, method: str,
