@@ -202,7 +202,6 @@ class AbstractCGPlus(AbstractSolver):
             return ft, float(gt @ base["d"])
 
         ls = MoreThuenteSearch(phi, self.ftol, self.gtol, self.xtol, self.stpmin, self.stpmax, self.maxfev)
-        fall = {"f": f, "g": g}  # accepted point
         while True:
             if it >= self.max_iter:
                 return SolverOutput(x, Status.MAX_ITER, f"max_iter = {self.max_iter} line searches reached", nit=it)

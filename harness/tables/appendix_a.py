@@ -136,7 +136,6 @@ def _thesis_table(runs: pd.DataFrame, table_id: str, methods: tuple[str, ...], n
     latest = _latest(runs)
     rows, flags = [], []
     verdicts: dict[str, list[bool]] = {m: [] for m in methods}
-    seen_first_rho: set[tuple[str, str]] = set()
     for (problem, n), grp in ref.groupby(["problem", "n"], sort=False):
         sqsd_rows = grp[grp["method"] == "SQSD"]
         lines = sqsd_rows["rho"].tolist() if "SQSD" in methods else [""]
@@ -161,7 +160,6 @@ def _thesis_table(runs: pd.DataFrame, table_id: str, methods: tuple[str, ...], n
                 frow.update(f)
                 if run is not None:
                     verdicts[m].append(not (f[f"{m} N^fg"] or f[f"{m} E^r/I^inf"]))
-            seen_first_rho.add((problem, n))
             rows.append(row)
             flags.append(frow)
     frame = pd.DataFrame(rows).fillna("")

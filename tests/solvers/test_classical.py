@@ -1,6 +1,5 @@
 """SD, Fletcher-Reeves, Polak-Ribiere as in CG+: line search, counting, Tables 2.1-2.2 rows."""
 
-import numpy as np
 import pytest
 
 from harness.reference import thesis_table
