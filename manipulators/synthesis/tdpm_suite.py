@@ -135,7 +135,7 @@ def _options() -> dict[str, dict[str, Any]]:
     opts = {
         # the thesis's Dynamic-Q with rho = 0.1; its stopping tolerances are not restated in
         # Section 6.6.2, so Dynamic-Q's defaults (Section 3.4) apply, with an iteration cap
-        "dynamic-q": {"rho": RHO, "max_iter": 60},
+        "dynamic-q": {"rho": RHO, "max_iter": 150},  # >= the thesis's largest N^g (83)
         "scipy-cobyla": {"rhobeg": RHO, "tol": 1e-3, "maxfev": 400},
         "scipy-slsqp": {"maxiter": 40, "ftol": 1e-6},
         "nlopt-mma": {"maxeval": 80, "xtol_rel": 1e-4, "ftol_rel": 1e-5},
