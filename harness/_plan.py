@@ -11,21 +11,21 @@ from __future__ import annotations
 import ast
 import dataclasses
 import hashlib
+import inspect
 import json
-import pathlib
 import re
 from typing import Any
 
 from problems import Case, Suite
 from solvers import get_solver_class, make_solver
 
+from problems._catalog import SUITES
+
+from ._codeversion import code_version
 from ._record import _jsonable, settings_hash
 from ._suites import SuiteRef
 
-__all__ = ["RunSpec", "plan_runs", "code_version", "parse_solver_spec", "HarnessArgumentError"]
-
-ROOT = pathlib.Path(__file__).resolve().parent.parent
-
+__all__ = ["RunSpec", "plan_runs", "parse_solver_spec", "overrides_text", "HarnessArgumentError"]
 
 class HarnessArgumentError(ValueError):
     """Bad arguments to the harness (unknown names, bad values): CLI exit status 2."""
@@ -49,6 +49,7 @@ class RunSpec:
     code_version: str
     timeout: float
     modules: tuple[str, ...] = ()
+    overrides: str = ""  # options given with the solver id (``sqsd[rho=0.5]``), canonical JSON
     not_applicable: str | None = None  # reason, when the solver cannot handle the problem
     plan_error: str | None = None  # bad options for this case: recorded as an error row
 
@@ -65,34 +66,23 @@ def run_key(suite: str, problem: str, n: int, start: str, variant: str, solver: 
     return hashlib.sha256(blob.encode()).hexdigest()[:20]
 
 
-_CODE_VERSIONS: dict[tuple[str, ...], str] = {}
+def overrides_text(opts: dict[str, Any]) -> str:
+    """Canonical text of command-line options ("" for none): part of a stored row's identity."""
+    return json.dumps(_jsonable(opts), sort_keys=True) if opts else ""
 
 
-def code_version(extra_files: tuple[str, ...] = ()) -> str:
-    """Hash of the code that determines a run's numbers.
-
-    The sources of the ``solvers``, ``problems`` and ``manipulators`` packages, the
-    row format (``harness/_record.py``, ``harness/_worker.py``) and any user suite file.
-    Any edit there gives new keys, so ``run`` re-runs instead of trusting stale rows.
-    """
-    if extra_files in _CODE_VERSIONS:
-        return _CODE_VERSIONS[extra_files]
-    h = hashlib.sha256()
-    files: list[pathlib.Path] = []
-    for pkg in ("solvers", "problems", "manipulators"):
-        d = ROOT / pkg
-        if d.is_dir():
-            files += sorted(p for p in d.rglob("*.py") if "__pycache__" not in p.parts)
-    files += [ROOT / "harness" / "_record.py", ROOT / "harness" / "_worker.py"]
-    files += [pathlib.Path(f) for f in extra_files]
-    for f in files:
-        try:
-            h.update(str(f.relative_to(ROOT) if f.is_relative_to(ROOT) else f.name).encode())
-            h.update(f.read_bytes())
-        except OSError:
-            continue
-    _CODE_VERSIONS[extra_files] = h.hexdigest()[:12]
-    return _CODE_VERSIONS[extra_files]
+def _solver_code(name: str, cls: Any, suite_module: str | None, files: tuple[str, ...]) -> str:
+    """Code version for runs of ``cls`` on the suite (see `harness._codeversion`)."""
+    mods = tuple(m for m in (getattr(cls, "__module__", None), suite_module) if m)
+    extra = list(files)
+    try:
+        f = inspect.getfile(cls)
+        if not any(f.endswith(f"{m.replace('.', '/')}.py") for m in mods if m.split(".")[0] in
+                   ("solvers", "problems", "manipulators")):
+            extra.append(f)  # a user's solver outside the project packages
+    except (TypeError, OSError):
+        pass
+    return code_version(mods, tuple(extra))
 
 
 def parse_solver_spec(spec: str) -> tuple[str, dict[str, Any]]:
@@ -141,7 +131,9 @@ def plan_runs(ref: SuiteRef, suite: Suite, solver_specs: list[str], problems: li
         except Exception as exc:  # noqa: BLE001 - a known solver that fails to import: error rows
             unavailable[name] = f"solver {name} unavailable: {type(exc).__name__}: {exc}"
     cases = select_cases(suite, problems)
-    cv = code_version((ref.file,) if ref.file else ())
+    suite_module = None if ref.file else SUITES.get(ref.name)
+    files = (ref.file,) if ref.file else ()
+    cv = {name: _solver_code(name, classes.get(name), suite_module, files) for name, _ in parsed}
     specs = []
     for case in cases:
         f_ref = case.problem.f_ref
@@ -163,6 +155,7 @@ def plan_runs(ref: SuiteRef, suite: Suite, solver_specs: list[str], problems: li
                 start=case.start, variant=case.variant,
                 f_ref=float("nan") if f_ref is None else float(f_ref),
                 solver=name, options=opts, settings=json.dumps(settings, sort_keys=True),
-                settings_hash=settings_hash(settings), code_version=cv, timeout=float(timeout),
-                modules=modules, not_applicable=reason, plan_error=err))
+                settings_hash=settings_hash(settings), code_version=cv[name], timeout=float(timeout),
+                modules=modules, overrides=overrides_text(over), not_applicable=reason,
+                plan_error=err))
     return specs

@@ -24,20 +24,19 @@ FEAS_TOL = 1e-6
 
 
 def solver_labels(runs: pd.DataFrame) -> pd.Series:
-    """Solver id; where one case has several runs of a solver, the options that differ.
+    """Solver id, with the command-line options of the run if any (``sqsd[rho=0.1]``).
 
-    Options a suite sets per case (e.g. SQSD's rho per problem) do not split a solver:
-    only settings that differ *within* a case do (``sqsd[rho=0.1]`` beside ``sqsd[rho=1.0]``).
+    Options a suite sets per case (e.g. SQSD's rho per problem) do not split a solver.
     """
-    labels = runs["solver"].astype(str).copy()
-    dup = runs.duplicated(["case_id", "solver"], keep=False)
-    for (_, solver), grp in runs[dup].groupby(["case_id", "solver"]):
-        settings = [json.loads(s or "{}") for s in grp["settings"]]
-        keys = sorted({k for st in settings for k in st
-                       if len({json.dumps(x.get(k), sort_keys=True) for x in settings}) > 1})
-        for idx, st in zip(grp.index, settings):
-            labels[idx] = f"{solver}[{','.join(f'{k}={st.get(k)}' for k in keys)}]"
-    return labels
+    over = runs["overrides"] if "overrides" in runs else pd.Series("", index=runs.index)
+
+    def label(solver: str, text: str) -> str:
+        if not text:
+            return solver
+        opts = json.loads(text)
+        return f"{solver}[{','.join(f'{k}={v}' for k, v in sorted(opts.items()))}]"
+
+    return pd.Series([label(s, o or "") for s, o in zip(runs["solver"], over)], index=runs.index)
 
 
 def cost_matrix(runs: pd.DataFrame, metric: str) -> pd.DataFrame:

@@ -6,8 +6,8 @@ Durability (issue 4, Section 1): every finished run is written at once to its ow
 whole file or none.  `consolidate` merges the pending files into ``runs.parquet`` — again
 via a temporary file and `os.replace` — and only then deletes them; if it is killed in
 between, the next load sees the rows twice and keeps one.  Rows are unique on
-(case_id, solver, settings_hash): a newer run of the same case, solver and settings
-(``--fresh``, or new code) replaces the older one.
+(case_id, solver, overrides): a newer run of the same case and solver with the same
+command-line options (``--fresh``, new code, new solver defaults) replaces the older one.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ from ._worker import COUNT_COLUMNS, EXTRA_COLUMNS
 __all__ = ["Store", "COLUMNS", "IDENTITY", "normalize"]
 
 COLUMNS = ROW_COLUMNS + EXTRA_COLUMNS
-IDENTITY = ["case_id", "solver", "settings_hash"]
+IDENTITY = ["case_id", "solver", "overrides"]
 FLOAT_COLUMNS = ["f", "f_ref", "rel_error", "inf_error", "max_violation", "wall_time_s", "time_in_evals_s"]
 
 
@@ -45,7 +45,7 @@ def normalize(df: pd.DataFrame) -> pd.DataFrame:
         df[c] = pd.to_numeric(df[c], errors="coerce").astype("float64")
     df["success"] = df["success"].fillna(False).astype(bool)
     for c in ("suite", "problem", "start", "variant", "case_id", "solver", "settings", "settings_hash",
-              "status", "message", "history", "extra", "run_key", "code_version", "finished_at"):
+              "status", "message", "history", "extra", "overrides", "run_key", "code_version", "finished_at"):
         df[c] = df[c].astype(object).where(df[c].notna(), "").astype(str)
     df["x"] = [list(v) if v is not None and not isinstance(v, float) else [] for v in df["x"]]
     return df.reset_index(drop=True)
@@ -67,11 +67,21 @@ def _locked(path: pathlib.Path) -> Iterator[None]:
             fcntl.flock(fh, fcntl.LOCK_UN)
 
 
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+_MODE = 0o666 & ~_umask()  # mkstemp creates 0600 files; results are meant to be shared
+
+
 def _atomic_write_bytes(path: pathlib.Path, data: bytes) -> None:
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
+        os.chmod(tmp, _MODE)
         os.replace(tmp, path)
     except BaseException:
         with contextlib.suppress(OSError):

@@ -24,7 +24,7 @@ from ._suites import import_modules, load_suite
 __all__ = ["execute", "spec_row", "EXTRA_COLUMNS", "COUNT_COLUMNS"]
 
 #: columns the harness adds to `harness._record.ROW_COLUMNS`
-EXTRA_COLUMNS = ["run_key", "code_version", "finished_at"]
+EXTRA_COLUMNS = ["overrides", "run_key", "code_version", "finished_at"]
 COUNT_COLUMNS = ["nfg", "nf", "ng", "nc", "nj", "nh", "nit"]
 NOT_APPLICABLE = "not_applicable"
 
@@ -56,7 +56,7 @@ def spec_row(spec: RunSpec, status: str, message: str, wall_time: float = float(
     if status == NOT_APPLICABLE:
         for c in COUNT_COLUMNS:
             row[c] = 0
-    row.update(run_key=spec.run_key, code_version=spec.code_version, finished_at=_now())
+    row.update(overrides=spec.overrides, run_key=spec.run_key, code_version=spec.code_version, finished_at=_now())
     return row
 
 
@@ -86,5 +86,5 @@ def execute(spec: RunSpec) -> dict[str, Any]:
         tb = traceback.extract_tb(exc.__traceback__)
         where = f" (at {tb[-1].filename.rsplit('/', 1)[-1]}:{tb[-1].lineno})" if tb else ""
         return spec_row(spec, "error", f"{type(exc).__name__}: {exc}{where}")
-    row.update(run_key=spec.run_key, code_version=spec.code_version, finished_at=_now())
+    row.update(overrides=spec.overrides, run_key=spec.run_key, code_version=spec.code_version, finished_at=_now())
     return row
