@@ -51,10 +51,14 @@ class DynamicQ(AbstractSolver):
     eps_f: float = option(1e-8, "normalized change of f from the best feasible f (3.11)", "Sec. 3.4 [THESIS]")
     eps_x: float = option(1e-5, "normalized step size (3.10)", "Sec. 3.4 [THESIS]")
     eps_c: float = option(1e-6, "feasibility: every constraint violation < eps_c", "Sec. 3.4 [THESIS]")
+    step_stop_feasible: bool = option(True, "accept the step test (3.10) only at a feasible iterate "
+                                      "(every violation < eps_c); False: (3.10) alone, as printed",
+                                      "[OWN] (a 'converged' infeasible point is useless; affects e.g. HS106)")
     max_iter: int = option(500, "maximum number of outer iterations (subproblems)",
                            "[OWN] (thesis: 'a maximum number of iterations', no value)")
-    subsolver: LFOPC = option(LFOPC(), "LFOPC instance solving the subproblems (its delta is replaced, see sub_delta)",
-                              "Alg. 3.2 step 3 [THESIS]; App. B")
+    subsolver: LFOPC = option(LFOPC(max_steps=2000), "LFOPC instance solving the subproblems (its delta is "
+                              "replaced by sub_delta * rho); default: thesis LFOPC with a 2000-step cap per phase",
+                              "Alg. 3.2 step 3 [THESIS]; App. B; step cap [OWN]")
     sub_delta: float = option(1.0, "LFOP step limit inside P[i] as a multiple of rho",
                               "[OWN] algorithms.md 4.3 (delta = rho; textbook delta = 1 is scale-blind)")
     curvature_clip: str = option("none", "'none' (3.6 as is), 'sqsd' (a < 0 -> 1e-60), "
@@ -63,7 +67,7 @@ class DynamicQ(AbstractSolver):
                               "eq. (3.8) text; resolution [OWN] algorithms.md 4.2")
     rho_reduction: bool = option(False, "halve rho when feasible f rises above f_best or steps reverse",
                                  "[OWN] algorithms.md 4.5 (off reproduces the thesis)")
-    normalize_constraints: str = option("cap", "scale the approximate constraints of P[i] by 1/||grad|| at x^i: "
+    normalize_constraints: str = option("unit", "scale the approximate constraints of P[i] by 1/||grad|| at x^i: "
                                         "'unit' always, 'cap' only where ||grad|| > 1 (penalty stiffness at most "
                                         "~2 mu), 'none' (as printed); the move limit likewise by 1/(2 rho)",
                                         "[OWN] (same feasible set; keeps LFOPC's phase 1 within its step cap)")
@@ -134,7 +138,7 @@ class DynamicQ(AbstractSolver):
             if prev is not None:
                 # Termination (3.10), (3.11)
                 step = float(np.linalg.norm(x - prev["x"]))
-                if step / (1.0 + float(np.linalg.norm(x))) < self.eps_x:
+                if step / (1.0 + float(np.linalg.norm(x))) < self.eps_x and (feasible or not self.step_stop_feasible):
                     return SolverOutput(x, Status.CONVERGED, "normalized step < eps_x (3.10)", nit=i,
                                         extra=self._extra(log, n_sub_steps, f_best))
                 if feasible and f_best is not None and abs(f - f_best) / (1.0 + abs(f_best)) < self.eps_f:
