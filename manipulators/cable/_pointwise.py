@@ -66,8 +66,11 @@ def lfopc_l2(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, feas_tol:
                    source="thesis eq. (6.17)")
     # phase 2 on the active constraints only (Appendix B, eq. B.7, as in the thesis): the
     # variant that keeps exterior penalties on inactive constraints in phase 2 was seen to
-    # drift along the active constraint here (errors of several tension units)
-    res = solve(prob, "lfopc", phase2_exterior=False, eps_g=1e-7)
+    # drift along the active constraint here (errors of several tension units).
+    # mu1 = 1e5 (Appendix B: 1e4) [OWN]: with tensions near t_max the phase-1 offsets
+    # lambda / (2 mu1) reach ~5e-4 (scaled) and flag nearly-active bounds as active (seen
+    # for a bound inactive by 0.044); eps_g = 1e-7 for ~1e-6 accurate tensions.
+    res = solve(prob, "lfopc", phase2_exterior=False, eps_g=1e-7, mu1=1e5)
     t = s * res.x
     viol = max(0.0, float(np.max(t_min - t)), float(np.max(t - t_max)))
     ok = viol <= feas_tol * t_max and float(np.max(np.abs(S @ t + w))) <= feas_tol * max(1.0, t_max)
