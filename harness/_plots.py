@@ -16,7 +16,7 @@ import pandas as pd
 
 from ._api import load_results
 from ._plan import HarnessArgumentError
-from ._profiles import best_so_far, data_profile, performance_profile, solver_labels
+from ._profiles import best_so_far, data_profile, performance_profile, prepare_histories, solver_labels
 
 __all__ = ["plot", "KINDS", "DATA_TAUS"]
 
@@ -65,11 +65,14 @@ def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[path
 def _data_profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
     plt = _plt()
     fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharey=True)
+    prepared = prepare_histories(runs)
     for ax, tau in zip(axes.flat, DATA_TAUS):
-        grid, d = data_profile(runs, tau)
+        grid, d = data_profile(None, tau, prepared=prepared)
         for lab in d.columns:
             ax.step(grid, d[lab], where="post", label=lab)
         ax.set_title(rf"$\tau = 10^{{{int(np.log10(tau))}}}$")
+        if grid[-1] > 50 * max(grid[1] if grid.size > 1 else 1.0, 1e-3):
+            ax.set_xscale("log")  # budgets spanning decades: linear axes hide the fast solvers
         ax.set_xlabel(r"evaluations / $(n_p + 1)$")
         ax.set_ylabel("fraction of problems solved")
         ax.set_ylim(-0.02, 1.02)

@@ -18,7 +18,7 @@ import json
 import numpy as np
 import pandas as pd
 
-__all__ = ["solver_labels", "performance_profile", "data_profile", "best_so_far", "FEAS_TOL"]
+__all__ = ["solver_labels", "performance_profile", "data_profile", "best_so_far", "history_array", "FEAS_TOL"]
 
 FEAS_TOL = 1e-6
 
@@ -64,32 +64,46 @@ def performance_profile(runs: pd.DataFrame, metric: str = "nfg") -> tuple[np.nda
     return grid, pd.DataFrame(rho, columns=t.columns)
 
 
-def best_so_far(history_json: str, feas_tol: float = FEAS_TOL) -> tuple[np.ndarray, np.ndarray]:
+def history_array(history_json: str) -> np.ndarray:
+    """A stored history as an (m, 3) array of [nfg, f, max_violation]."""
+    rows = json.loads(history_json or "[]")
+    return np.asarray(rows, dtype=float).reshape(-1, 3) if rows else np.empty((0, 3))
+
+
+def best_so_far(history: str | np.ndarray, feas_tol: float = FEAS_TOL) -> tuple[np.ndarray, np.ndarray]:
     """(nfg, best feasible f so far) from a stored history [[nfg, f, viol], ...]."""
-    h = np.asarray(json.loads(history_json) or np.empty((0, 3)), dtype=float).reshape(-1, 3)
+    h = history_array(history) if isinstance(history, str) else history
     if h.size == 0:
         return np.empty(0), np.empty(0)
     f = np.where((h[:, 2] <= feas_tol) & np.isfinite(h[:, 1]), h[:, 1], np.inf)
     return h[:, 0], np.minimum.accumulate(f)
 
 
-def data_profile(runs: pd.DataFrame, tau: float, alpha_max: float | None = None
-                 ) -> tuple[np.ndarray, pd.DataFrame]:
-    """(alpha grid in simplex gradients (n_p + 1) evaluations, d_s(alpha) per solver label)."""
+def prepare_histories(runs: pd.DataFrame) -> dict:
+    """Parse every history once (data profiles at several tolerances reuse it)."""
     df = runs.assign(label=solver_labels(runs))
     df = df[df["status"] != "not_applicable"]
-    labels = sorted(df["label"].unique())
-    curves = {}
+    curves: dict[tuple[str, str], tuple[np.ndarray, np.ndarray, int]] = {}
     f0: dict[str, float] = {}
     for r in df.itertuples():
-        nfg, fb = best_so_far(r.history)
+        h = history_array(r.history)
+        nfg, fb = best_so_far(h)
         curves[(r.case_id, r.label)] = (nfg, fb, int(r.n))
-        if nfg.size and (r.case_id not in f0):
-            raw = np.asarray(json.loads(r.history), dtype=float).reshape(-1, 3)
-            f0[r.case_id] = float(raw[0, 1])
-    cases = sorted({c for c, _ in curves})
-    fl = {c: min((float(v[1][-1]) for (cc, _), v in curves.items() if cc == c and v[1].size), default=np.inf)
-          for c in cases}
+        if nfg.size and r.case_id not in f0:
+            f0[r.case_id] = float(h[0, 1])  # f(x0): every solver's first evaluation is x0
+    return {"curves": curves, "f0": f0, "labels": sorted(df["label"].unique()),
+            "cases": sorted({c for c, _ in curves})}
+
+
+def data_profile(runs: pd.DataFrame | None, tau: float, alpha_max: float | None = None,
+                 prepared: dict | None = None) -> tuple[np.ndarray, pd.DataFrame]:
+    """(alpha grid in simplex gradients (n_p + 1) evaluations, d_s(alpha) per solver label)."""
+    prep = prepared if prepared is not None else prepare_histories(runs)
+    curves, f0, labels, cases = prep["curves"], prep["f0"], prep["labels"], prep["cases"]
+    fl = {c: np.inf for c in cases}
+    for (c, _), (_, fb, _) in curves.items():
+        if fb.size:
+            fl[c] = min(fl[c], float(fb[-1]))
     t = np.full((len(cases), len(labels)), np.inf)
     for i, c in enumerate(cases):
         if c not in f0 or not np.isfinite(fl[c]) or not np.isfinite(f0[c]):

@@ -122,3 +122,21 @@ def test_progress_bar_and_plain_lines():
         p.close()
     assert plain.getvalue().splitlines()[-1].startswith("s: 3/3 runs, 2 failed") and "\r" not in plain.getvalue()
     assert "\r[" in tty.getvalue() and "ETA" in tty.getvalue() and tty.getvalue().endswith("\n")
+
+
+def test_code_version_follows_the_import_closure(tmp_path):
+    from harness._codeversion import code_version, module_closure
+
+    names = lambda mods: {str(p.relative_to(p.parents[1])) for p in module_closure(mods)}  # noqa: E731
+    sqsd = names(("solvers.sqsd", "problems._suite"))
+    assert "solvers/sqsd.py" in sqsd and "problems/_oracle.py" in sqsd
+    assert not any(n.startswith("manipulators") or "lfopc" in n for n in sqsd)
+    f = tmp_path / "suite.py"
+    f.write_text("A = 1\n")
+    v1 = code_version(("solvers.sqsd",), (str(f),))
+    assert code_version(("solvers.sqsd",), (str(f),)) == v1
+    f.write_text("A = 2\n")
+    import os
+
+    os.utime(f, (1, 1))  # a new mtime, as an edit gives
+    assert code_version(("solvers.sqsd",), (str(f),)) != v1
