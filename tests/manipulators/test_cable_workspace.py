@@ -163,3 +163,23 @@ def test_bench_one_lp_per_grid_point(benchmark):
     np.testing.assert_array_equal(feas, ws.mask.flat[idx])
     if benchmark.stats is not None:
         benchmark.extra_info["extrapolated_grid_s"] = benchmark.stats.stats.mean * X.size / idx.size
+
+
+@pytest.mark.parametrize("n", [5, 6])
+def test_grid_workspace_many_cables_matches_lp(n):
+    """n >= 5: the vectorized basic-solution test agrees with one LP per grid point."""
+    from manipulators.cable import frame_point
+
+    rng = np.random.default_rng(n)
+    robot = CableRobot(frame_point(np.linspace(0, 2 * np.pi, n, endpoint=False) + 0.3),
+                       rng.uniform(-0.1, 0.1, (n, 2)))
+    w = loads()["L2"]
+    ws = robot.workspace(0.1, w, resolution=24, tensions="l1")
+    assert 0 < ws.mask.sum() < ws.mask.size
+    X, Y = np.meshgrid(*ws.grid)
+    idx = rng.choice(X.size, 40, replace=False)
+    U = np.column_stack([X.flat[idx], Y.flat[idx]])
+    feas_lp = robot.tensions_batch(U, 0.1, w, "l1", backend="linprog")[0]
+    np.testing.assert_array_equal(feas_lp, ws.mask.flat[idx])
+    T = ws.info["tensions"][ws.mask]
+    assert T.min() >= robot.t_min - 1e-9 and T.max() <= robot.t_max + 1e-9
