@@ -54,8 +54,8 @@ class DynamicQ(AbstractSolver):
     step_stop_feasible: bool = option(True, "accept the step test (3.10) only at a feasible iterate "
                                       "(every violation < eps_c); False: (3.10) alone, as printed",
                                       "[OWN] (a 'converged' infeasible point is useless; affects e.g. HS106)")
-    max_iter: int = option(500, "maximum number of outer iterations (subproblems)",
-                           "[OWN] (thesis: 'a maximum number of iterations', no value)")
+    max_iter: int = option(100, "maximum number of outer iterations (subproblems)",
+                           "[OWN] (thesis: 'a maximum number of iterations', no value; HS13 ends on it at N^fg = 50)")
     subsolver: LFOPC = option(LFOPC(max_steps=2000), "LFOPC instance solving the subproblems (its delta is "
                               "replaced by sub_delta * rho); default: thesis LFOPC with a 2000-step cap per phase",
                               "Alg. 3.2 step 3 [THESIS]; App. B; step cap [OWN]")
