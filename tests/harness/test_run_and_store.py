@@ -140,3 +140,18 @@ def test_code_version_follows_the_import_closure(tmp_path):
 
     os.utime(f, (1, 1))  # a new mtime, as an edit gives
     assert code_version(("solvers.sqsd",), (str(f),)) != v1
+
+
+def test_crash_between_parquet_replace_and_unlink_leaves_no_duplicates(tiny_file, tmp_path):
+    """Consolidation killed after os.replace of runs.parquet but before deleting the run
+    files: the rows exist twice on disk, once in every view of the store."""
+    run(tiny_file, tmp_path, problems=["q2", "q20"])
+    store = Store(tmp_path, "tiny")
+    rows = store.load()
+    plain = lambda v: None if v is pd.NA else (list(map(float, v)) if hasattr(v, "tolist") else int(v))  # noqa: E731
+    for r in rows.to_dict("records"):  # re-create the per-run files as if never deleted
+        store.write_run(json.loads(json.dumps(r, default=plain)))
+    assert len(store.load()) == len(rows) == 2
+    assert store.consolidate() == 2 and not list(store.pending_dir.glob("*.json"))
+    s = run(tiny_file, tmp_path, problems=["q2", "q20"])
+    assert s.executed == 0
