@@ -54,6 +54,7 @@ def _die_with_parent(parent: int) -> None:
 def _worker_main(conn: Connection, parent: int | None = None) -> None:
     """Worker loop: announce readiness, then receive a RunSpec and send back its row."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's business
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the parent's KeyboardInterrupt handler
     if parent is not None:
         _die_with_parent(parent)
     conn.send(READY)
@@ -106,6 +107,8 @@ class Slot:
             self.proc.join(1.0)
             code = self.proc.exitcode
             self.kill()
+            if code == -signal.SIGTERM:  # the campaign is being stopped, not a solver failure:
+                raise KeyboardInterrupt  # store nothing for this run, so a re-run redoes it
             if spec is None:
                 return None
             return spec_row(spec, "error", f"worker process died (exit code {code})",

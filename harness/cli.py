@@ -43,7 +43,12 @@ def _suite_args(p: argparse.ArgumentParser, required: bool = True) -> None:
 
 
 def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="python -m harness", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(
+        prog="python -m harness",
+        description="Run benchmark suites, store one row per run, and render tables, figures, a report and "
+                    "comparisons from the stored runs (docs/harness.md).",
+        epilog="Exit status: 0 harness worked (whatever the solvers did), 2 bad arguments, "
+               "1 other failures or compare found regressions, 130 interrupted.")
     sub = ap.add_subparsers(dest="command", required=True)
 
     r = sub.add_parser("run", help="run a suite and store one row per run")

@@ -92,3 +92,32 @@ def test_sigterm_consolidates_and_exits_130(tmp_path):
     assert proc.returncode == 130 and "resume" in err
     assert (out / "napping" / "runs.parquet").exists() and not list(pending.glob("*.json"))
     assert 2 <= len(harness.load_results("napping", out)) < 16
+
+
+
+def test_worker_killed_by_sigterm_is_an_interrupt_not_an_error_row(tmp_path):
+    """A batch system may SIGTERM every process of the group: a worker killed that way
+    stops the campaign (nothing stored for its run) instead of recording a solver error."""
+    import multiprocessing as mp
+
+    import pytest
+
+    from harness._plan import plan_runs
+    from harness._pool import Slot
+    from harness._suites import ref_for
+
+    suite = tmp_path / "napping.py"
+    suite.write_text(SUITE.replace("0.15, \"nap length\"", "30.0, \"nap length\""))
+    ref = ref_for(file=suite)
+    spec = plan_runs(ref, ref.load(), ["nap"], ["p01"], timeout=60)[0]
+    slot = Slot(mp.get_context("fork"))
+    try:
+        assert slot.conn.poll(30) and slot.receive() is None  # READY
+        slot.submit(spec)
+        time.sleep(0.2)
+        os.kill(slot.proc.pid, signal.SIGTERM)
+        assert slot.conn.poll(30)
+        with pytest.raises(KeyboardInterrupt):
+            slot.receive()
+    finally:
+        slot.kill()
