@@ -123,6 +123,21 @@ class PenaltyForm(_BoundsMixin):
         self._set_bounds(self.n, lower, upper)
         self.p = p if p is not None else (0 if ineq is None else -1)  # -1: learn at first call
         self.q = q if q is not None else (0 if eq is None else -1)
+        # per-constraint penalty weights: Q = f + mu sum alpha_j g_j^2 + ... (eq. B.6 allows
+        # alpha_j, beta_k per constraint; 1.0 = one overall mu, the thesis's usual choice)
+        self.alpha_g: Any = 1.0
+        self.alpha_h: Any = 1.0
+
+    def scale_by_gradients(self, x: np.ndarray, floor: float = 1e-8) -> None:
+        """Set alpha_j = 1/||grad g_j(x)||^2 (and beta_k likewise): walls of equal stiffness 2 mu.
+
+        The Jacobians at ``x`` are requested once (for an oracle: at the start point,
+        which is evaluated anyway).
+        """
+        if self.has_ineq:
+            self.alpha_g = 1.0 / np.maximum(np.linalg.norm(self.ineq_jac(x), axis=1), floor) ** 2
+        if self.has_eq:
+            self.alpha_h = 1.0 / np.maximum(np.linalg.norm(self.eq_jac(x), axis=1), floor) ** 2
 
     # -- constraint access (subclasses override) -------------------------------------
     def ineq(self, x: np.ndarray) -> np.ndarray:
@@ -157,16 +172,16 @@ class PenaltyForm(_BoundsMixin):
             if self.has_ineq:
                 w = np.maximum(self.ineq(x), 0.0)
                 if w.any():  # Jacobian only where some constraint is violated
-                    gr = gr + two_mu * (self.ineq_jac(x).T @ w)
+                    gr = gr + two_mu * (self.ineq_jac(x).T @ (w * self.alpha_g))
         else:
             gr = np.zeros(self.n)
             if active.ineq.any() or (active.exterior and self.has_ineq):
                 g = self.ineq(x)
                 w = np.where(active.ineq, g, np.maximum(g, 0.0) if active.exterior else 0.0)
                 if w.any():
-                    gr = gr + two_mu * (self.ineq_jac(x).T @ w)
+                    gr = gr + two_mu * (self.ineq_jac(x).T @ (w * self.alpha_g))
         if self.has_eq:
-            gr = gr + two_mu * (self.eq_jac(x).T @ self.eq(x))
+            gr = gr + two_mu * (self.eq_jac(x).T @ (self.eq(x) * self.alpha_h))
         if self.has_bounds:
             gr = gr + self._bound_penalty_grad(x, two_mu, active)
         return gr

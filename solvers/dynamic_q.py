@@ -30,6 +30,10 @@ SQSD_C_MIN = 1e-60  # Algorithm 2.2: replacement for a negative curvature
 SAOI_A_MIN = 1e-5  # SAOi defaults.f atol1
 
 
+def _finite(ev: dict[str, Any]) -> bool:
+    return bool(np.isfinite(ev["f"]) and all(np.all(np.isfinite(ev[k])) for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac")))
+
+
 @dataclasses.dataclass(frozen=True)
 class DynamicQ(AbstractSolver):
     """The Dynamic-Q method, Algorithm 3.2 with termination (3.10)/(3.11).
@@ -54,6 +58,9 @@ class DynamicQ(AbstractSolver):
     step_stop_feasible: bool = option(True, "accept the step test (3.10) only at a feasible iterate "
                                       "(every violation < eps_c); False: (3.10) alone, as printed",
                                       "[OWN] (a 'converged' infeasible point is useless; affects e.g. HS106)")
+    nonfinite_backtrack: int = option(5, "if f, g or h is non-finite at a new iterate, halve the step back "
+                                      "towards x^(i-1) up to this many times (each is an oracle point)",
+                                      "[OWN] (robustness on design problems with undefined regions)")
     max_iter: int = option(100, "maximum number of outer iterations (subproblems)",
                            "[OWN] (thesis: 'a maximum number of iterations', no value; HS13 ends on it at N^fg = 50)")
     subsolver: LFOPC = option(LFOPC(max_steps=2000), "LFOPC instance solving the subproblems (its delta is "
@@ -85,6 +92,8 @@ class DynamicQ(AbstractSolver):
                 raise ValueError(f"dynamic-q: {k} must be >= 0, got {v!r}")
         if not (isinstance(self.max_iter, (int, np.integer)) and self.max_iter >= 1):
             raise ValueError(f"dynamic-q: max_iter must be an integer >= 1, got {self.max_iter!r}")
+        if not (isinstance(self.nonfinite_backtrack, (int, np.integer)) and self.nonfinite_backtrack >= 0):
+            raise ValueError(f"dynamic-q: nonfinite_backtrack must be an integer >= 0, got {self.nonfinite_backtrack!r}")
         if not isinstance(self.subsolver, LFOPC):
             raise ValueError(f"dynamic-q: subsolver must be an LFOPC instance, got {type(self.subsolver).__name__}")
         if self.normalize_constraints not in NORMALIZE:
@@ -125,15 +134,21 @@ class DynamicQ(AbstractSolver):
         for i in range(self.max_iter + 1):
             # Step 1: evaluate everything at x^i (one N^fg)
             ev = oracle.evaluate(x)
-            f = ev["f"]
-            if not (np.isfinite(f) and np.all(np.isfinite(ev["g"])) and np.all(np.isfinite(ev["ineq"]))
-                    and np.all(np.isfinite(ev["eq"]))):
+            n_back = 0
+            while not _finite(ev) and prev is not None and n_back < self.nonfinite_backtrack:
+                # [OWN] a subproblem solution where the problem is undefined (e.g. a degenerate
+                # design): halve the step back towards x^{i-1}; each retry is one oracle point
+                x = prev["x"] + 0.5 * (x - prev["x"])
+                ev = oracle.evaluate(x)
+                n_back += 1
+            if not _finite(ev):
                 return SolverOutput(prev["x"] if prev else x, Status.ERROR,
                                     f"non-finite f, gradient or constraint at iterate {i}", nit=i,
                                     extra=self._extra(log, n_sub_steps, f_best))
+            f = ev["f"]
             viol = self._violation(ev, x, lo, up)
             feasible = viol < self.eps_c
-            rec = {"i": i, "f": f, "max_violation": viol, "rho": rho}
+            rec = {"i": i, "f": f, "max_violation": viol, "rho": rho, "n_backtracks": n_back}
             log.append(rec)
             if prev is not None:
                 # Termination (3.10), (3.11)

@@ -45,6 +45,9 @@ class ETOPC(AbstractSolver):
     phase2_exterior: bool = option(True, "keep the exterior penalty on inactive inequalities in phase 2 "
                                    "(False: eq. B.7 literally)", "[OWN] (B.7 lets phase 2 run away on "
                                    "non-convex subproblems, e.g. Dynamic-Q on HS23)")
+    scale_constraints: bool = option(False, "in minimize(oracle): penalty weight alpha_j = mu/||grad g_j(x0)||^2 "
+                                     "per constraint (walls of equal stiffness) instead of one mu",
+                                     "eq. (B.6) allows alpha_j, beta_k per constraint [THESIS]; choice [OWN]")
     active_tol: float = option(0.0, "g_j(x*(mu1)) > active_tol marks constraint j active for phase 2", "[OWN]")
     beta: str = option("PR", "'PR' (Polak-Ribiere+, used in the thesis) or 'FR'", "Sec. 4.4 [THESIS]; PR+ [OWN]")
     eps_g: float = option(1e-5, "per-phase stop: ||grad Q|| <= eps_g", "[OWN] (Ch. 4 used 1e-3)")
@@ -73,7 +76,13 @@ class ETOPC(AbstractSolver):
         return three_phase(form, x0, lambda grad, x: etop(grad, x, params), self.mu0, self.mu1, self.active_tol,
                            phase2_exterior=self.phase2_exterior)
 
+    def _oracle_form(self, oracle: Oracle) -> OracleForm:
+        form = OracleForm(oracle)
+        if self.scale_constraints:
+            form.scale_by_gradients(oracle.x0)
+        return form
+
     def minimize(self, oracle: Oracle) -> SolverOutput:
-        out = _output(self.solve_form(OracleForm(oracle), oracle.x0), self.max_steps)
+        out = _output(self.solve_form(self._oracle_form(oracle), oracle.x0), self.max_steps)
         out.extra["reconstruction"] = "ETOPC-recon (algorithms.md section 5)"
         return out

@@ -60,6 +60,9 @@ class LFOPC(AbstractSolver):
     carry_dt: bool = option(True, "start phases 1 and 2 with the time step reached in the previous phase "
                             "(x sqrt(mu0/mu1) into phase 1) instead of dt0", "[OWN] (dt0 next to a stiff wall "
                             "first leaps far across it)")
+    scale_constraints: bool = option(False, "in minimize(oracle): penalty weight alpha_j = mu/||grad g_j(x0)||^2 "
+                                     "per constraint (walls of equal stiffness) instead of one mu",
+                                     "eq. (B.6) allows alpha_j, beta_k per constraint [THESIS]; choice [OWN]")
     active_tol: float = option(0.0, "g_j(x*(mu1)) > active_tol marks constraint j active for phase 2",
                                "App. B.4 '> 0' [THESIS]; tolerance [OWN]")
     delta: float = option(1.0, "LFOP maximum step length", "[CILIB] LFDecorator delta = 1; [MLA3]")
@@ -97,8 +100,14 @@ class LFOPC(AbstractSolver):
         return three_phase(form, x0, lambda grad, x, **kw: lfop(grad, x, params, **kw), self.mu0, self.mu1,
                            self.active_tol, phase2_exterior=self.phase2_exterior, carry_dt=self.carry_dt)
 
+    def _oracle_form(self, oracle: Oracle) -> OracleForm:
+        form = OracleForm(oracle)
+        if self.scale_constraints:
+            form.scale_by_gradients(oracle.x0)
+        return form
+
     def minimize(self, oracle: Oracle) -> SolverOutput:
-        res = self.solve_form(OracleForm(oracle), oracle.x0)
+        res = self.solve_form(self._oracle_form(oracle), oracle.x0)
         return _output(res, self.max_steps)
 
 

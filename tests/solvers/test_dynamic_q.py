@@ -127,3 +127,20 @@ def test_whole_hs_suite_acceptance():
             theirs += th["nfg"]
     assert solved >= 37
     assert 0.5 <= ours / theirs <= 2.0
+
+
+def test_nonfinite_region_is_backtracked_out_of():
+    # f undefined (NaN) for x1 > 1.2: the first linear subproblem steps there (rho = 1)
+    def f(x):
+        return np.nan if x[0] > 1.2 else (x[0] - 1) ** 2 + (x[1] - 0.5) ** 2
+
+    def g(x):
+        return np.array([2 * (x[0] - 1), 2 * (x[1] - 0.5)])
+
+    p = Problem(name="holes", x0=[0.5, 0.0], objective=f, gradient=g, ineq=lambda x: np.array([x[1] - 2.0]),
+                ineq_jacobian=lambda x: np.array([[0.0, 1.0]]))
+    r = solve(p, "dynamic-q")
+    assert r.success and abs(r.f) < 1e-8
+    assert any(it["n_backtracks"] for it in r.extra["iterations"])
+    r0 = solve(p, "dynamic-q", nonfinite_backtrack=0)
+    assert r0.status is Status.ERROR
