@@ -57,6 +57,7 @@ def published_table() -> Table:
 
 
 def _our_rows(runs: pd.DataFrame, n: int, load: str):
+    from manipulators.cable import BETA_MIN
     from manipulators.synthesis.tdpm_suite import SUITE, dextrous_area, separations
 
     pid = f"tdpm{n}-{load.lower()}"
@@ -74,7 +75,9 @@ def _our_rows(runs: pd.DataFrame, n: int, load: str):
                      "d0": _vec(d0), "A_d0": a0, "d*": _vec(x) if ok else "",
                      "A_d*": round(-float(r.f), 4) if np.isfinite(r.f) else np.nan,
                      "min sep": round(float(np.min(separations(x))), 4) if ok else np.nan,
-                     "status": r.status})
+                     "status": r.status,
+                     # flagged on the unrounded value (feasibility tolerance 1e-6 rad)
+                     "_violates": bool(ok and np.min(separations(x)) < BETA_MIN - 1e-6)})
     return rows
 
 
@@ -92,11 +95,12 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                          "N^g": p["ng"], "N^fg": np.nan, "d0": _vec(p["d0"]), "A_d0": p["A_d0"],
                          "d*": _vec(p["dstar"]), "A_d*": p["A_dstar"], "min sep": np.nan, "status": ""})
         frame = pd.DataFrame(rows)
+        violates = frame["_violates"].eq(True) if "_violates" in frame else pd.Series(False, index=frame.index)
         cols = ["source", "solver", "run", "N^g", "N^fg", "d0", "A_d0", "d*", "A_d*", "min sep", "status"]
         frame = frame.reindex(columns=cols)
         thesis_best = max(p["A_dstar"] for p in pub)
         flags = pd.DataFrame(False, index=frame.index, columns=frame.columns)
-        flags["min sep"] = frame["min sep"] < BETA_MIN - 1e-6
+        flags["min sep"] = violates.to_numpy()
         out.append(Table(f"table_{tid.replace('.', '_')}",
                          f"Table {tid}: {n}-cable TDPM optimized designs for {load} (ours beside the thesis's)",
                          frame, flags,
@@ -104,8 +108,8 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                                 f"min sep: smallest angle between consecutive frame points; (6.29) needs "
                                 f">= beta_min = {BETA_MIN:.4f} (10 deg, inferred from the tables).",
                                 "Thesis A_d0 / A_d* are the printed values; table_6_published recomputes them."]))
-        for solver in sorted({r["solver"] for r in ours}):
-            mine = [r for r in ours if r["solver"] == solver and np.isfinite(r["A_d*"])]
+        for solver in sorted({r["solver"] for r in ours}) + (["(any solver)"] if ours else []):
+            mine = [r for r in ours if solver in (r["solver"], "(any solver)") and np.isfinite(r["A_d*"])]
             if not mine:
                 continue
             b = max(mine, key=lambda r: r["A_d*"])
@@ -113,6 +117,7 @@ def tables(runs: pd.DataFrame) -> list[Table]:
             best_rows.append({"table": tid, "cables": n, "load": load, "solver": solver,
                               "best run": b["run"], "A_d* best (ours)": b["A_d*"], "d* (ours)": b["d*"],
                               "A_d* best (thesis)": thesis_best,
+                              "by": b["solver"],
                               "ratio": round(b["A_d*"] / thesis_best, 4),
                               "mean N^fg": round(float(np.mean([r["N^fg"] for r in mine])), 1)})
             best_flags.append({k: (k == "A_d* best (ours)" and short) for k in best_rows[-1]})
