@@ -107,9 +107,9 @@ def test_worker_killed_by_sigterm_is_an_interrupt_not_an_error_row(tmp_path):
     from harness._suites import ref_for
 
     suite = tmp_path / "napping.py"
-    suite.write_text(SUITE.replace("0.15, \"nap length\"", "30.0, \"nap length\""))
+    suite.write_text(SUITE)
     ref = ref_for(file=suite)
-    spec = plan_runs(ref, ref.load(), ["nap"], ["p01"], timeout=60)[0]
+    spec = plan_runs(ref, ref.load(), ["nap[seconds=30]"], ["p01"], timeout=60)[0]
     slot = Slot(mp.get_context("fork"))
     try:
         assert slot.conn.poll(30) and slot.receive() is None  # READY
