@@ -1,0 +1,191 @@
+"""NLopt adapters: MMA (Svanberg's method of moving asymptotes) and SLSQP.
+
+MMA is the thesis's other comparison: Table 3.1's last row reports Svanberg's MMA on
+his polytope problem. NLopt's ``LD_MMA`` is Svanberg's 2002 globally convergent CCSA
+variant. All values and gradients come from the counting `Oracle`.
+
+Equality constraints. ``LD_MMA`` accepts only inequalities. We convert each h_k(x) = 0
+into the two inequalities h_k - delta <= 0 and -h_k - delta <= 0 with a band
+``eq_band`` (default 1e-7, below the 1e-6 feasibility tolerance of a "solved" run, so a
+point accepted by the band is also counted feasible). A zero band would leave MMA's
+conservative subproblems with an empty interior. ``LD_SLSQP`` takes equalities natively.
+
+x0 is projected onto the bounds first (NLopt requires a start within them).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import ClassVar
+
+import nlopt
+import numpy as np
+
+from problems import Oracle, ProblemError
+
+from ._base import AbstractSolver, option
+from ._result import SolverOutput, Status
+from .scipy_constrained import start_in_bounds
+
+__all__ = ["NloptMMA", "NloptSLSQP", "STATUS_MAP"]
+
+#: NLopt result codes -> Status (the codes are NLopt's public enum values)
+STATUS_MAP: dict[int, Status] = {
+    nlopt.SUCCESS: Status.CONVERGED,            # 1
+    nlopt.STOPVAL_REACHED: Status.CONVERGED,    # 2
+    nlopt.FTOL_REACHED: Status.CONVERGED,       # 3
+    nlopt.XTOL_REACHED: Status.CONVERGED,       # 4
+    nlopt.MAXEVAL_REACHED: Status.MAX_ITER,     # 5
+    nlopt.MAXTIME_REACHED: Status.TIMEOUT,      # 6
+    nlopt.FAILURE: Status.FAILED,               # -1
+    nlopt.INVALID_ARGS: Status.ERROR,           # -2
+    nlopt.OUT_OF_MEMORY: Status.ERROR,          # -3
+    nlopt.ROUNDOFF_LIMITED: Status.FAILED,      # -4
+    nlopt.FORCED_STOP: Status.FAILED,           # -5
+}
+
+
+@dataclasses.dataclass(frozen=True)
+class _NloptBase(AbstractSolver):
+    """Shared set-up of an NLopt gradient-based local optimizer (not registered)."""
+
+    algorithm: ClassVar[int]
+    native_eq: ClassVar[bool]
+    STATUS_MAP: ClassVar[dict[int, Status]] = STATUS_MAP
+
+    ftol_rel: float = option(1e-12, "stop when |delta f| < ftol_rel |f| between iterations", "NLopt ftol_rel")
+    xtol_rel: float = option(1e-10, "stop when every |delta x_i| < xtol_rel |x_i|", "NLopt xtol_rel")
+    maxeval: int = option(3000, "cap on objective evaluations (NLopt's own count; the oracle's N^fg is reported)",
+                          "NLopt maxeval")
+    maxtime: float = option(30.0, "wall-clock limit in seconds (a guard; NLopt then ends with MAXTIME_REACHED)",
+                            "NLopt maxtime")
+    constraint_tol: float = option(1e-8, "per-constraint feasibility tolerance given to NLopt", "NLopt mconstraint tol")
+    eq_band: float = option(1e-7, "half-width delta of the band -delta <= h(x) <= delta used for equality "
+                            "constraints when the algorithm has no native equalities (MMA)", "this module's doc")
+
+    def __post_init__(self) -> None:
+        for k in ("ftol_rel", "xtol_rel", "constraint_tol", "eq_band", "maxtime"):
+            v = getattr(self, k)
+            if not (v >= 0 and np.isfinite(v)):
+                raise ValueError(f"{self.name}: {k} must be a finite number >= 0, got {v!r}")
+        if self.maxeval < 1:
+            raise ValueError(f"{self.name}: maxeval must be >= 1, got {self.maxeval}")
+
+    def minimize(self, oracle: Oracle) -> SolverOutput:
+        n = oracle.n
+        opt = nlopt.opt(self.algorithm, n)
+
+        def objective(x: np.ndarray, grad: np.ndarray) -> float:
+            if grad.size:
+                f, g = oracle.f_and_grad(x)
+                grad[:] = g
+                return f
+            return oracle.f(x)
+
+        opt.set_min_objective(objective)
+        if oracle.has_bounds:
+            opt.set_lower_bounds(oracle.lower)
+            opt.set_upper_bounds(oracle.upper)
+        m_i, m_e = oracle.n_ineq, oracle.n_eq
+        if m_i:
+            def ineq(result: np.ndarray, x: np.ndarray, grad: np.ndarray) -> None:
+                result[:] = oracle.ineq(x)
+                if grad.size:
+                    grad[:] = oracle.ineq_jac(x)
+
+            opt.add_inequality_mconstraint(ineq, [self.constraint_tol] * m_i)
+        if m_e and self.native_eq:
+            def eq(result: np.ndarray, x: np.ndarray, grad: np.ndarray) -> None:
+                result[:] = oracle.eq(x)
+                if grad.size:
+                    grad[:] = oracle.eq_jac(x)
+
+            opt.add_equality_mconstraint(eq, [self.constraint_tol] * m_e)
+        elif m_e:
+            band = self.eq_band
+
+            def eq_as_ineq(result: np.ndarray, x: np.ndarray, grad: np.ndarray) -> None:
+                h = oracle.eq(x)
+                result[:] = np.concatenate([h - band, -h - band])
+                if grad.size:
+                    J = oracle.eq_jac(x)
+                    grad[:] = np.vstack([J, -J])
+
+            opt.add_inequality_mconstraint(eq_as_ineq, [self.constraint_tol] * (2 * m_e))
+        self._configure(opt)
+        opt.set_ftol_rel(self.ftol_rel)
+        opt.set_xtol_rel(self.xtol_rel)
+        opt.set_maxeval(self.maxeval)
+        opt.set_maxtime(self.maxtime)
+        x0 = start_in_bounds(oracle)
+        try:
+            x = opt.optimize(x0)
+            code = opt.last_optimize_result()
+        except nlopt.RoundoffLimited:
+            x, code = oracle.last_x, nlopt.ROUNDOFF_LIMITED
+        except ProblemError:
+            raise  # a bad problem definition is an error, not a solver failure
+        except (nlopt.ForcedStop, ValueError, RuntimeError) as exc:
+            # NLopt's generic failure / invalid-argument results. BudgetExhausted from
+            # the oracle is re-raised by NLopt's wrapper and handled by solve().
+            return SolverOutput(oracle.last_x, Status.FAILED, f"NLopt stopped: {type(exc).__name__}: {exc}",
+                                extra={"native_status": int(opt.last_optimize_result())})
+        status = self.STATUS_MAP.get(int(code), Status.FAILED)
+        return SolverOutput(np.asarray(x, dtype=float), status, f"NLopt result {code} ({_code_name(code)})",
+                            nit=int(opt.get_numevals()), extra={"native_status": int(code)})
+
+
+    def _configure(self, opt: nlopt.opt) -> None:
+        """Algorithm-specific NLopt parameters (none by default)."""
+
+
+def _code_name(code: int) -> str:
+    names = {getattr(nlopt, k): k for k in ("SUCCESS", "STOPVAL_REACHED", "FTOL_REACHED", "XTOL_REACHED",
+                                            "MAXEVAL_REACHED", "MAXTIME_REACHED", "FAILURE", "INVALID_ARGS",
+                                            "OUT_OF_MEMORY", "ROUNDOFF_LIMITED", "FORCED_STOP")}
+    return names.get(int(code), "unknown")
+
+
+@dataclasses.dataclass(frozen=True)
+class NloptMMA(_NloptBase):
+    """NLopt LD_MMA: Svanberg's method of moving asymptotes (CCSA, 2002 variant).
+
+    Equalities become a band of half-width ``eq_band`` (see the module docstring).
+    """
+
+    name = "nlopt-mma"
+    summary = "NLopt LD_MMA (Svanberg's MMA, the thesis's Table 3.1 comparison); equalities as a 1e-7 band"
+    family = "established"
+    handles = frozenset({"bounds", "ineq", "eq"})
+    algorithm: ClassVar[int] = nlopt.LD_MMA
+    native_eq: ClassVar[bool] = False
+
+    dual_ftol_rel: float = option(1e-8, "relative f tolerance of MMA's inner dual subproblem. NLopt's default "
+                                  "1e-14 made single HS runs take minutes (HS28: 100 s) with the same end point",
+                                  "NLopt CCSA/MMA parameter 'dual_ftol_rel'")
+    dual_maxeval: int = option(1000, "cap on the inner dual iterations per MMA subproblem (NLopt: unlimited; "
+                               "HS55 then took 250 s)", "NLopt CCSA/MMA parameter 'dual_maxeval'")
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if not (0 < self.dual_ftol_rel < 1):
+            raise ValueError(f"{self.name}: dual_ftol_rel must be in (0, 1), got {self.dual_ftol_rel!r}")
+        if self.dual_maxeval < 1:
+            raise ValueError(f"{self.name}: dual_maxeval must be >= 1, got {self.dual_maxeval}")
+
+    def _configure(self, opt: nlopt.opt) -> None:
+        opt.set_param("dual_ftol_rel", self.dual_ftol_rel)
+        opt.set_param("dual_maxeval", self.dual_maxeval)
+
+
+@dataclasses.dataclass(frozen=True)
+class NloptSLSQP(_NloptBase):
+    """NLopt LD_SLSQP: Kraft's SLSQP (a C translation, independent of SciPy's build)."""
+
+    name = "nlopt-slsqp"
+    summary = "NLopt LD_SLSQP (Kraft's sequential least squares QP)"
+    family = "established"
+    handles = frozenset({"bounds", "ineq", "eq"})
+    algorithm: ClassVar[int] = nlopt.LD_SLSQP
+    native_eq: ClassVar[bool] = True
+
