@@ -55,6 +55,13 @@ def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[[pd.DataFram
 
 
 def build_tables(suite: str, runs: pd.DataFrame, ref: SuiteRef | None = None) -> list[Table]:
+    """The plug-in's tables from the runs made with the suite's own settings.
+
+    Runs with command-line options (``sqsd[rho=0.1]``: column ``overrides``) are left out:
+    the tables reproduce the thesis's settings, one run per (case, solver).
+    """
+    if "overrides" in runs.columns:
+        runs = runs[runs["overrides"].fillna("") == ""].reset_index(drop=True)
     tables = list(plugin_for(suite, ref)(runs))
     for t in tables:
         if not isinstance(t, Table):
