@@ -74,6 +74,16 @@ def test_compare_and_baseline(stored, tmp_path, capsys):
     save_baseline("tiny", out, base)
     assert main(["compare", str(base), str(out)]) == 0
     assert "0 regressions" in capsys.readouterr().out
+    csv = base / "tiny" / "counts.csv"
+    frame = pd.read_csv(csv, keep_default_na=False, na_values=[""])
+    first = frame.index[frame.success][0]
+    frame.loc[first, "nfg"] = frame.loc[first, "nfg"] // 2  # the baseline was cheaper: NEW regressed
+    frame.to_csv(csv, index=False)
+    assert main(["compare", str(base), str(out)]) == 1
+    assert "REGRESSION: N^fg" in capsys.readouterr().out
+    assert main(["compare", str(base), str(out), "--nfg-tol", "5"]) == 0
+    capsys.readouterr()
+    save_baseline("tiny", out, base)  # restore
     old = load_counts(base, "tiny")
     new = harness.load_results("tiny", out)
     solved = new.index[new.success][:2]
