@@ -44,8 +44,6 @@ SUITE = Suite(name="tiny", description="harness test suite", build=build, solver
 
 def tables(runs):
     """Table plug-in of the tiny suite (the harness looks for ``tables`` in suite files)."""
-    import pandas as pd
-
     from harness.tables import Table
 
     frame = runs.pivot_table(index="case_id", columns="solver", values="nfg", aggfunc="first")
