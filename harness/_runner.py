@@ -51,6 +51,14 @@ class RunSummary:
                 f"{self.elapsed:.1f} s -> {self.store}")
 
 
+def _cores() -> int:
+    """Cores this process may use (CPU affinity, e.g. under a batch system), else all."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except AttributeError:  # macOS, Windows
+        return os.cpu_count() or 1
+
+
 def resolve_suite(suite: str | None = None, suite_file: str | os.PathLike[str] | None = None) -> SuiteRef:
     """A `SuiteRef`; unknown names raise `HarnessArgumentError` listing the valid ones."""
     try:
@@ -132,7 +140,7 @@ def run_suite(
         bar = Progress(ref.name, len(todo), progress)
         last = time.perf_counter()
         try:
-            for row in _execute(todo, executor, jobs or os.cpu_count() or 1, scheduler, start_method):
+            for row in _execute(todo, executor, jobs or _cores(), scheduler, start_method):
                 if row is None:  # heartbeat: nothing finished lately
                     bar.tick()
                     continue
