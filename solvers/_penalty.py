@@ -192,6 +192,19 @@ class PenaltyForm(_BoundsMixin):
         lo, up = self._bound_active(x, tol)
         return Active(g > tol, lo, up, exterior)
 
+    def active_residual(self, x: np.ndarray, active: Active) -> float:
+        """max |g_j| over I_a, |h_k| and active bounds: Q_a's residual (phase 2 target is 0)."""
+        r = 0.0
+        if active.ineq.any():
+            r = float(np.max(np.abs(self.ineq(x)[active.ineq])))
+        if self.has_eq:
+            r = max(r, float(np.max(np.abs(self.eq(x)), initial=0.0)))
+        if active.lower.any():
+            r = max(r, float(np.max(np.abs(x - self.lower)[active.lower])))
+        if active.upper.any():
+            r = max(r, float(np.max(np.abs(x - self.upper)[active.upper])))
+        return r
+
     def max_violation(self, x: np.ndarray) -> float:
         v = self._bound_violation(x)
         if self.has_ineq:
@@ -256,7 +269,7 @@ class ThreePhaseResult:
 
     @property
     def converged(self) -> bool:
-        return all(ph.reason in ("eps_g", "eps_x") for ph in self.phases)
+        return all(ph.reason in ("eps_g", "eps_x", "stop") for ph in self.phases)
 
     def summary(self) -> dict[str, Any]:
         return {
@@ -269,7 +282,7 @@ class ThreePhaseResult:
 
 def three_phase(form: PenaltyForm, x0: np.ndarray, core: Core, mu0: float, mu1: float,
                 active_tol: float = 0.0, phase2: bool = True, phase2_exterior: bool = True,
-                carry_dt: bool = False) -> ThreePhaseResult:
+                carry_dt: bool = False, phase2_tol: float = 0.0) -> ThreePhaseResult:
     """Appendix B.4: phase 0 on Q(., mu0), phase 1 on Q(., mu1), phase 2 on Q_a(., mu1).
 
     ``core(grad, x)`` is an unconstrained gradient-only minimizer returning an object
@@ -281,6 +294,9 @@ def three_phase(form: PenaltyForm, x0: np.ndarray, core: Core, mu0: float, mu1: 
     (scaled by sqrt(mu0/mu1) from phase 0 to 1, since the wall stiffness scales with
     mu); ``core`` must then accept ``dt_init`` and return ``dt`` (LFOP).  [OWN]: a phase
     that restarts with dt0 next to a stiff wall first leaps far across it.
+    ``phase2_tol`` > 0 ends phase 2 as soon as every active constraint is satisfied to
+    that tolerance (Q_a's minimum is 0; at degenerate intersections its gradient test
+    is reached only very slowly) [OWN]; ``core`` must then accept ``stop``.
     """
     phases: list[PhaseRecord] = []
     x = np.array(x0, dtype=float).reshape(-1)
@@ -296,6 +312,8 @@ def three_phase(form: PenaltyForm, x0: np.ndarray, core: Core, mu0: float, mu1: 
     x_mu1 = x
     active = form.active_set(x, active_tol, phase2_exterior)
     if phase2 and (active.count or form.has_eq) and phases[-1].reason != "nonfinite":
+        if phase2_tol > 0:
+            kw["stop"] = lambda z: form.active_residual(z, active) <= phase2_tol
         r = core(lambda z: form.grad_Q(z, mu1, active), x, **kw)
         phases.append(PhaseRecord(2, mu1, r.ng, r.reason, r.grad_norm))
         x = r.x

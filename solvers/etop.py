@@ -89,8 +89,12 @@ def _norm(v: np.ndarray) -> float:
     return math.sqrt(float(v @ v))
 
 
-def etop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: EtopParams = EtopParams()) -> EtopResult:
-    """Minimize with gradient-only conjugate gradients (reconstruction, see module docstring)."""
+def etop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: EtopParams = EtopParams(),
+         stop: Callable[[np.ndarray], bool] | None = None) -> EtopResult:
+    """Minimize with gradient-only conjugate gradients (reconstruction, see module docstring).
+
+    ``stop(x) -> bool`` is an extra test at every accepted point (reason "stop").
+    """
     P = params
     x = np.array(x0, dtype=float).reshape(-1)
     n = x.size
@@ -177,6 +181,8 @@ def etop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: EtopP
         k += 1
         since_restart += 1
         h = lam_acc
+        if stop is not None and stop(x):
+            return EtopResult(x, ng, "stop", gn_new, k, restarts)
         if lam_acc < P.eps_x:
             return EtopResult(x, ng, "eps_x", gn_new, k, restarts)
         # Conjugate direction (PR+ or FR), restarts every n iterations or on ascent

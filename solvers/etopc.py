@@ -48,6 +48,9 @@ class ETOPC(AbstractSolver):
     scale_constraints: bool = option(False, "in minimize(oracle): penalty weight alpha_j = mu/||grad g_j(x0)||^2 "
                                      "per constraint (walls of equal stiffness) instead of one mu",
                                      "eq. (B.6) allows alpha_j, beta_k per constraint [THESIS]; choice [OWN]")
+    phase2_tol: float = option(1e-10, "phase 2 also ends when every active constraint satisfies |g_j|, |h_k| <= "
+                               "phase2_tol (0 = gradient test only)", "[OWN] (Q_a's minimum is 0; at degenerate "
+                               "intersections, e.g. the cusp of HS13, its gradient test takes thousands of steps)")
     active_tol: float = option(0.0, "g_j(x*(mu1)) > active_tol marks constraint j active for phase 2", "[OWN]")
     beta: str = option("PR", "'PR' (Polak-Ribiere+, used in the thesis) or 'FR'", "Sec. 4.4 [THESIS]; PR+ [OWN]")
     eps_g: float = option(1e-5, "per-phase stop: ||grad Q|| <= eps_g", "[OWN] (Ch. 4 used 1e-3)")
@@ -62,6 +65,8 @@ class ETOPC(AbstractSolver):
     def __post_init__(self) -> None:
         if not (np.isfinite(self.mu0) and np.isfinite(self.mu1) and 0 < self.mu0 <= self.mu1):
             raise ValueError(f"etopc: need 0 < mu0 <= mu1 < inf, got mu0={self.mu0}, mu1={self.mu1}")
+        if not (self.phase2_tol >= 0):
+            raise ValueError(f"etopc: phase2_tol must be >= 0, got {self.phase2_tol}")
         if not (self.active_tol >= 0):
             raise ValueError(f"etopc: active_tol must be >= 0, got {self.active_tol}")
         self.etop_params()
@@ -73,8 +78,8 @@ class ETOPC(AbstractSolver):
     def solve_form(self, form: PenaltyForm, x0: np.ndarray) -> ThreePhaseResult:
         """Run the three phases on a penalty form from ``x0``."""
         params = self.etop_params()
-        return three_phase(form, x0, lambda grad, x: etop(grad, x, params), self.mu0, self.mu1, self.active_tol,
-                           phase2_exterior=self.phase2_exterior)
+        return three_phase(form, x0, lambda grad, x, **kw: etop(grad, x, params, **kw), self.mu0, self.mu1,
+                           self.active_tol, phase2_exterior=self.phase2_exterior, phase2_tol=self.phase2_tol)
 
     def _oracle_form(self, oracle: Oracle) -> OracleForm:
         form = OracleForm(oracle)

@@ -110,7 +110,7 @@ def _norm(v: np.ndarray) -> float:
 
 
 def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopParams = LfopParams(),
-         dt_init: float | None = None) -> LfopResult:
+         dt_init: float | None = None, stop: Callable[[np.ndarray], bool] | None = None) -> LfopResult:
     """Minimize by the leap-frog dynamic trajectory method (algorithms.md section 1.3).
 
     Parameters
@@ -122,6 +122,9 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
     dt_init : float, optional
         Initial time step overriding ``params.dt0``/``dt_mode`` (LFOPC passes the
         step reached in the previous penalty phase).
+    stop : callable ``stop(x) -> bool``, optional
+        Extra test at every new gradient point (LFOPC's phase 2 passes "all active
+        constraints satisfied to phase2_tol"); ends the run with reason "stop".
 
     Returns
     -------
@@ -206,6 +209,8 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
             last = (x, anorm)
             if anorm <= eps_g:
                 return LfopResult(x, ng, "eps_g", anorm, n_int, n_half, dt)
+            if stop is not None and ng % 8 == 0 and stop(x):  # every 8th point: the test costs a step
+                return LfopResult(x, ng, "stop", anorm, n_int, n_half, dt)
             if ng >= P.max_steps:
                 return LfopResult(x, ng, "max_steps", anorm, n_int, n_half, dt)
             # Step 9: energy test; interference when kinetic energy does not grow (eq. B.5)

@@ -63,6 +63,9 @@ class LFOPC(AbstractSolver):
     scale_constraints: bool = option(False, "in minimize(oracle): penalty weight alpha_j = mu/||grad g_j(x0)||^2 "
                                      "per constraint (walls of equal stiffness) instead of one mu",
                                      "eq. (B.6) allows alpha_j, beta_k per constraint [THESIS]; choice [OWN]")
+    phase2_tol: float = option(1e-10, "phase 2 also ends when every active constraint satisfies |g_j|, |h_k| <= "
+                               "phase2_tol (0 = gradient test only)", "[OWN] (Q_a's minimum is 0; at degenerate "
+                               "intersections, e.g. the cusp of HS13, its gradient test takes thousands of steps)")
     active_tol: float = option(0.0, "g_j(x*(mu1)) > active_tol marks constraint j active for phase 2",
                                "App. B.4 '> 0' [THESIS]; tolerance [OWN]")
     delta: float = option(1.0, "LFOP maximum step length", "[CILIB] LFDecorator delta = 1; [MLA3]")
@@ -83,6 +86,8 @@ class LFOPC(AbstractSolver):
     def __post_init__(self) -> None:
         if not (np.isfinite(self.mu0) and np.isfinite(self.mu1) and 0 < self.mu0 <= self.mu1):
             raise ValueError(f"lfopc: need 0 < mu0 <= mu1 < inf, got mu0={self.mu0}, mu1={self.mu1}")
+        if not (self.phase2_tol >= 0):
+            raise ValueError(f"lfopc: phase2_tol must be >= 0, got {self.phase2_tol}")
         if not (self.active_tol >= 0):
             raise ValueError(f"lfopc: active_tol must be >= 0, got {self.active_tol}")
         self.lfop_params()  # validates the LFOP options with clear messages
@@ -98,7 +103,8 @@ class LFOPC(AbstractSolver):
         """Run the three phases on a penalty form from ``x0`` (no function values used)."""
         params = self.lfop_params()
         return three_phase(form, x0, lambda grad, x, **kw: lfop(grad, x, params, **kw), self.mu0, self.mu1,
-                           self.active_tol, phase2_exterior=self.phase2_exterior, carry_dt=self.carry_dt)
+                           self.active_tol, phase2_exterior=self.phase2_exterior, carry_dt=self.carry_dt,
+                           phase2_tol=self.phase2_tol)
 
     def _oracle_form(self, oracle: Oracle) -> OracleForm:
         form = OracleForm(oracle)
