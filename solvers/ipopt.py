@@ -15,6 +15,7 @@ Otherwise Ipopt uses its limited-memory quasi-Newton approximation.
 from __future__ import annotations
 
 import dataclasses
+import re
 import weakref
 from collections.abc import Callable
 from typing import Any, ClassVar
@@ -110,6 +111,11 @@ class _StopOnError(ca.Callback):
         return [1 if self._errors else 0]
 
 
+def _casadi_name(prefix: str, name: str) -> str:
+    """A valid CasADi function name from a problem name ('my-problem' -> 'ipopt_my_problem')."""
+    return re.sub(r"_+", "_", f"{prefix}_{re.sub(r'[^0-9A-Za-z]', '_', name)}").rstrip("_")
+
+
 def _hessian_function(problem: Problem) -> ca.Function:
     """Upper triangle of the Hessian of sigma f + lam^T [g; h], from ``problem.symbolic``."""
     cached = _HESS_CACHE.get(problem)
@@ -125,7 +131,7 @@ def _hessian_function(problem: Problem) -> ca.Function:
     sigma, lam = ca.SX.sym("sigma"), ca.SX.sym("lam", m)
     lag = sigma * ca.SX(sym["f"]) + (ca.dot(lam, c) if m else 0)
     hess = ca.triu(ca.densify(ca.hessian(lag, x)[0]))
-    fun = ca.Function(f"{problem.name}_hess_lag", [x, sigma, lam], [ca.densify(hess)])
+    fun = ca.Function(_casadi_name("hess_lag", problem.name), [x, sigma, lam], [ca.densify(hess)])
     _HESS_CACHE[problem] = fun
     return fun
 
@@ -234,7 +240,7 @@ class Ipopt(AbstractSolver):
             opts["ipopt"]["hessian_approximation"] = "limited-memory"
         keep.append(_StopOnError(n, m, errors))
         opts["iteration_callback"] = keep[-1]
-        solver = ca.nlpsol(f"ipopt_{problem.name}", "ipopt", nlp, opts)
+        solver = ca.nlpsol(_casadi_name("ipopt", problem.name), "ipopt", nlp, opts)
         # x0 as given: Ipopt pushes it inside the bounds itself (bound_push), by design
         args: dict[str, Any] = {"x0": oracle.x0, "lbx": oracle.lower, "ubx": oracle.upper}
         if m:
