@@ -104,7 +104,7 @@ class PenaltyForm(_BoundsMixin):
         form = PenaltyForm(n=S.shape[1], grad_f=lambda t: 2 * t,
                            eq=lambda t: S @ t + w, eq_jac=lambda t: S,
                            lower=t_min, upper=t_max)
-        res = LFOPC().solve_form(form, x0=np.full(S.shape[1], t_min))
+        res = LFOPC().solve_form(form, x0=np.full(S.shape[1], t_min))  # from solvers.lfopc
         res.x, res.max_violation, res.ng
     """
 

@@ -8,8 +8,7 @@ subproblem:
     bounds).  Dynamic-Q calls it on its spherical quadratic subproblems; other code
     calls it on small problems given by callables, e.g. the cable-tension QP (6.17)::
 
-        from solvers.lfopc import LFOPC
-        from solvers._penalty import PenaltyForm
+        from solvers.lfopc import LFOPC, PenaltyForm
         form = PenaltyForm(n=m, grad_f=lambda t: 2 * t,
                            eq=lambda t: S @ t + w, eq_jac=lambda t: S,
                            lower=t_min, upper=t_max)
@@ -33,7 +32,7 @@ from ._penalty import OracleForm, PenaltyForm, ThreePhaseResult, three_phase
 from ._result import SolverOutput, Status
 from .lfop import LfopParams, lfop
 
-__all__ = ["LFOPC"]
+__all__ = ["LFOPC", "PenaltyForm"]  # PenaltyForm re-exported: the function-free entry point
 
 
 @dataclasses.dataclass(frozen=True)

@@ -6,7 +6,7 @@ from scipy.optimize import minimize as sp_minimize
 
 from problems import Problem
 from solvers import Status, solve
-from solvers._penalty import PenaltyForm
+from solvers.lfopc import PenaltyForm
 from solvers.lfopc import LFOPC
 
 
