@@ -137,7 +137,10 @@ def plan_runs(ref: SuiteRef, suite: Suite, solver_specs: list[str], problems: li
     specs = []
     for case in cases:
         f_ref = case.problem.f_ref
+        only = case.meta.get("solvers")  # a case meant for some solvers only (e.g. a14's rho=10 SQSD variant)
         for (name, over), spec_str in zip(parsed, solver_specs):
+            if only and name not in only:
+                continue
             valid = [o["name"] for o in classes[name].options()] if name in classes else []
             opts = {**case.options_for(name, valid), **over}
             reason = err = None

@@ -25,6 +25,8 @@ class Case:
     ``options`` maps a solver id (or ``"*"`` for every solver that has that option) to
     option values, e.g. ``{"*": {"eps_g": 1e-5}, "sqsd": {"rho": 0.3}}``.
     ``problem_id`` is the table's problem label (``"a12"``), ``start`` the start label.
+    ``meta["solvers"]``, if given, restricts the case to those solver ids (the harness
+    plans no other run for it), e.g. a variant that only changes SQSD's rho.
     """
 
     problem: Problem
