@@ -64,7 +64,8 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--solver-module", action="append", default=[], dest="modules",
                    help="module name or .py file to import first (e.g. one that registers solvers); repeatable")
     r.add_argument("--quiet", action="store_true", help="no progress display")
-
+    r.add_argument("--no-table", action="store_true",
+                   help="do not regenerate the suite's tables after the run")
     t = sub.add_parser("table", help="render a suite's tables from stored results")
     _suite_args(t)
     t.add_argument("--format", choices=["md", "csv", "latex"], default="md", help="format printed (all are written)")
@@ -108,7 +109,29 @@ def _cmd_run(a: argparse.Namespace) -> int:
                         scheduler=a.scheduler, modules=a.modules, progress=None if a.quiet else sys.stderr,
                         argv=sys.argv)
     print(summary)
+    if not a.no_table:
+        _tables_after_run(a)
     return 0
+
+
+def _tables_after_run(a: argparse.Namespace) -> None:
+    """Regenerate the suite's tables from the store, so one command gives the thesis tables."""
+    from ._api import render_tables
+    from ._runner import resolve_suite
+    from .tables._render import RENDERERS, NoTablePlugin
+
+    try:
+        tables, paths = render_tables(resolve_suite(a.suite, a.suite_file), a.out)
+    except NoTablePlugin:
+        return
+    except Exception as exc:  # noqa: BLE001 - the runs are stored; say why the tables are not
+        print(f"tables not rendered: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return
+    for t in tables:
+        if "summary" in t.name:
+            print(RENDERERS["md"](t))
+    md = [str(p) for p in paths if str(p).endswith(".md")]
+    print("tables (ours beside the thesis's): " + ", ".join(md))
 
 
 def _cmd_table(a: argparse.Namespace) -> int:
