@@ -8,16 +8,14 @@ options of the finished run, so a key computed before a run equals the stored on
 
 from __future__ import annotations
 
-import ast
 import dataclasses
 import hashlib
 import inspect
 import json
-import re
 from typing import Any
 
 from problems import Case, Suite
-from solvers import get_solver_class, make_solver
+from solvers import get_solver_class, make_solver, parse_spec
 
 from problems._catalog import SUITES
 
@@ -86,20 +84,14 @@ def _solver_code(name: str, cls: Any, suite_module: str | None, files: tuple[str
 
 
 def parse_solver_spec(spec: str) -> tuple[str, dict[str, Any]]:
-    """``"sqsd[rho=0.5]"`` -> ("sqsd", {"rho": 0.5}); the options override the case's."""
-    m = re.fullmatch(r"\s*([^\[\]\s]+)\s*(?:\[(.*)\])?\s*", spec)
-    if not m:
-        raise HarnessArgumentError(f"cannot parse solver specification {spec!r}")
-    opts: dict[str, Any] = {}
-    for item in filter(None, (m.group(2) or "").split(",")):
-        if "=" not in item:
-            raise HarnessArgumentError(f"solver parameter {item!r} in {spec!r} is not key=value")
-        k, v = (s.strip() for s in item.split("=", 1))
-        try:
-            opts[k] = ast.literal_eval(v)
-        except (ValueError, SyntaxError):
-            opts[k] = v
-    return m.group(1), opts
+    """``"sqsd[rho=0.5]"`` -> ("sqsd", {"rho": 0.5}); the options override the case's.
+
+    The syntax is the registry's (`solvers.parse_spec`); errors become argument errors.
+    """
+    try:
+        return parse_spec(spec)
+    except ValueError as exc:
+        raise HarnessArgumentError(str(exc)) from None
 
 
 def select_cases(suite: Suite, problems: list[str] | None) -> list[Case]:

@@ -13,6 +13,7 @@ from ._base import option as option
 from ._registry import UnknownSolver as UnknownSolver
 from ._registry import get_solver_class as get_solver_class
 from ._registry import make_solver as make_solver
+from ._registry import parse_spec as parse_spec
 from ._registry import register as register
 from ._registry import solver_names as solver_names
 from ._registry import unregister as unregister

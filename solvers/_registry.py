@@ -15,7 +15,7 @@ from typing import Any
 from ._base import AbstractSolver
 from ._catalog import BUILTIN
 
-__all__ = ["register", "unregister", "get_solver_class", "solver_names", "make_solver", "UnknownSolver"]
+__all__ = ["register", "unregister", "get_solver_class", "solver_names", "make_solver", "parse_spec", "UnknownSolver"]
 
 _USER: dict[str, type[AbstractSolver]] = {}
 _LOADED: dict[str, type[AbstractSolver]] = {}
@@ -62,7 +62,7 @@ def get_solver_class(name: str) -> type[AbstractSolver]:
     return cls
 
 
-def _parse_spec(spec: str) -> tuple[str, dict[str, Any]]:
+def parse_spec(spec: str) -> tuple[str, dict[str, Any]]:
     """``"lfopc[delta_t=0.5,mu1=1e4]"`` -> ("lfopc", {...}) (benchopt's syntax)."""
     m = re.fullmatch(r"\s*([^\[\]\s]+)\s*(?:\[(.*)\])?\s*", spec)
     if not m:
@@ -92,7 +92,7 @@ def make_solver(spec: str | AbstractSolver, **options: Any) -> AbstractSolver:
 
             return dataclasses.replace(spec, **options)  # type: ignore[type-var]
         return spec
-    name, spec_opts = _parse_spec(spec)
+    name, spec_opts = parse_spec(spec)
     cls = get_solver_class(name)
     opts = {**spec_opts, **options}
     valid = [o["name"] for o in cls.options()]
