@@ -57,6 +57,16 @@ def test_feasible_design_has_negative_g_and_is_enclosed():
     assert (g <= 0) == ex["enclosed"]
 
 
+def test_centre_outside_workspace_is_not_feasible():
+    """Regression: a design whose +-5 degree workspaces miss W_p entirely (found by SLSQP on
+    MO/P2 when the triangle scheme was applied about an O' outside the workspace) must not
+    pass g <= 0; g agrees with the exact polygon check."""
+    d = np.array([-0.70516325, 0.62283715, 1.8635125, 1.88859408, 0.98672821])
+    ex = exact_enclosure("mo", d, "P2")
+    g = synthesis_problem("mo", "P2").ineq(d)[0]
+    assert not ex["enclosed"] and g > 0.1
+
+
 def test_evaluate_reports_thesis_style_kappa_and_exact_check():
     prob = synthesis_problem("so", "P3")
     out = evaluate("so", prob.x0, "P3")
@@ -87,7 +97,13 @@ def test_table_plugin_on_a_fake_run():
                           "nfg": 10, "nf": 60, "x": d, "wall_time_s": 1.0, "f": -0.9, "max_violation": 0.0,
                           "history": "[]"}])
     t = synthesis_table(runs, "so")
-    assert t.name == "table_5_3" and len(t.frame) == 1
-    row = t.frame.iloc[0]
+    # one row per run plus the published design of every P, checked in our model
+    assert t.name == "table_5_3" and len(t.frame) == 4
+    assert list(t.frame["solver"]).count("(thesis d*)") == 3
+    i = int(np.flatnonzero(t.frame["solver"] == "dynamic-q")[0])
+    row = t.frame.iloc[i]
+    # P1, P3 have no run here: their thesis f* cannot count as reproduced
+    thesis_rows = np.flatnonzero(t.frame["solver"] == "(thesis d*)")
+    assert t.flags.iloc[thesis_rows[0]]["f* (thesis)"] and t.flags.iloc[thesis_rows[2]]["f* (thesis)"]
     assert row["f* (thesis)"] == pytest.approx(0.927)
     assert row["f(d0)"] == pytest.approx(0.768, abs=1e-3)
