@@ -22,6 +22,9 @@ __all__ = ["RPR2", "CONSTRAINT_NAMES", "inverse_condition"]
 CONSTRAINT_NAMES = ("l1 >= l1_min", "l1 <= l1_max", "l2 >= l2_min", "l2 <= l2_max", "y >= yA")
 
 
+REFINE = 3  # halvings of the chord when a trace misses the radiating point (`RPR2.workspace`)
+
+
 def inverse_condition(xA: float, yA: float, xB: float, U) -> np.ndarray:
     """kappa^-1 = det J = (y - yA)(xB - xA) / (l1 l2) (eq. 4.23, D.15) for any base
     (also xA == xB, where it is 0); NaN at the pivots."""
@@ -155,12 +158,21 @@ class RPR2:
         return J
 
     def interior_point(self, n: int = 9) -> np.ndarray | None:
-        """A point well inside the workspace (Appendix C.4: leg lengths inside their ranges,
-        eq. C.7), or None if the workspace above the base line is empty.
+        """A point inside the workspace (Appendix C.4), or None if the workspace above
+        the base line is empty.
 
-        Forward kinematics over an n x n grid of leg lengths inside the limits, keeping the
+        The pose with mid-range leg lengths (eq. C.7) if it is strictly inside; otherwise
+        forward kinematics over an n x n grid of leg lengths inside the limits, keeping the
         point with the largest margin min_j(-C_j).
         """
+        # (C.7): the point with both legs at mid-range, v = (v_min + v_max)/2. It moves
+        # continuously with the design, so the whole chord trace (and every discretized
+        # objective) does too; a grid argmax would jump between grid points and put
+        # steps of ~1e-3 into f (finite differences of 1e-5 then read gradients of ~1e2).
+        mid = self.forward(0.5 * (self.l_min[0] + self.l_max[0]), 0.5 * (self.l_min[1] + self.l_max[1]))
+        if np.all(np.isfinite(mid)) and np.all(self.constraints(mid[None, :]) < 0):
+            return mid
+        # otherwise (no mid-range pose above the base line): the best of a grid of leg lengths
         f = (np.arange(n) + 0.5) / n
         l1 = self.l_min[0] + f * (self.l_max[0] - self.l_min[0])
         l2 = self.l_min[1] + f * (self.l_max[1] - self.l_min[1])
@@ -184,7 +196,21 @@ class RPR2:
         if u0 is None:
             return Workspace.empty(reason="no point above the base line satisfies the leg limits")
         kw.setdefault("jacobian", self.constraint_jacobian)
-        return chord_boundary(self.constraints, u0, chord, **kw)
+        ws = chord_boundary(self.constraints, u0, chord, **kw)
+        # A trace of a simply connected region must close around the radiating point u0.
+        # Where the region is narrower than the chord (the sharp tips of a thin crescent)
+        # a chord can jump across it and the trace turns back on itself, enclosing a
+        # sliver that misses u0 (measured: area 0.001 for an exact 4.92 at d = 0.5). Such
+        # a trace is redone at half the chord, up to `REFINE` times [OWN: Appendix C
+        # assumes d small against the workspace's features].
+        d = float(chord)
+        for k in range(REFINE):
+            if ws.info.get("closed") and ws.n_boundary >= 3 and bool(ws.contains(u0[None, :])[0]):
+                break
+            d *= 0.5
+            ws = chord_boundary(self.constraints, u0, d, **kw)
+            ws.info["refined_from"] = float(chord)
+        return ws
 
     def exact_region(self, quad_segs: int = 1024) -> shapely.Geometry:
         """The exact workspace (two annuli intersected, above the base line) as a shapely

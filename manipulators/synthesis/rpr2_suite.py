@@ -220,10 +220,13 @@ def _caps(kind: str) -> dict[str, dict[str, Any]]:
     general = {k: s[k] for k in ("eps_f", "eps_x", "eps_g", "rho") if k in s}
     opts: dict[str, dict[str, Any]] = {"*": general}
     opts["lfopc"] = {"delta": s["rho"], "max_steps": 400}  # move limit rho as LFOP's step limit
-    opts["dynamic-q"] = {"max_iter": 400}
+    # caps: about 3x the thesis's largest count for the same formulation (Tables 4.3-4.7:
+    # N^g <= 509 for O, <= 573 for E, 12 for P), so that the suite fits in 10 minutes
+    opts["sqsd"] = {"max_iter": 600}
+    opts["dynamic-q"] = {"max_iter": {"o": 300, "e": 400, "p": 100}[kind]}
     opts["scipy-cobyla"] = {"rhobeg": s["rho"], "tol": s["eps_x"], "maxfev": 600}
-    opts["scipy-slsqp"] = {"maxiter": 100}
-    opts["ipopt"] = {"max_iter": 100}
+    opts["scipy-slsqp"] = {"maxiter": 100 if kind == "o" else 40}
+    opts["ipopt"] = {"max_iter": 100 if kind == "o" else 40}
     opts["nlopt-mma"] = {"maxeval": 300, "max_eval": 300}
     return {k: _valid(k, v) for k, v in opts.items()}
 
