@@ -46,7 +46,7 @@ from ..rpr3 import RPR3
 from ..workspace import Workspace
 
 __all__ = ["SUITE", "SETTINGS", "START_SO", "START_MO", "PRESCRIBED3", "synthesis_problem", "evaluate",
-           "exact_enclosure", "design"]
+           "exact_enclosure", "exact_optimum", "design"]
 
 START_SO = (-1.0, 0.0, 1.0, 2.0, 1.0)  # Section 5.6.2 (Haug et al. [16])
 START_MO = (-0.75, 0.0, 0.75, 1.5, 0.75)  # Section 5.7.2
@@ -372,3 +372,52 @@ SUITE = Suite(
     build=_build,
     solvers=SOLVERS,
 )
+
+
+# ------------------------------------------------------------------ reference optimum of the exact model
+def exact_optimum(kind: str, prescribed: str = "P1", n_starts: int = 12, k: int = 96, seed: int = 0) -> dict[str, Any]:
+    """The best design of the *exact* model, for the tables: no chord method, no g.
+
+    W_p is enclosed in a constant-orientation workspace iff every leg length over W_p's
+    boundary is within its limits (an annulus's hole, radius >= 1, cannot fit inside W_p).
+    So SO/MO/D synthesis is, exactly, ``max t`` subject to ``t <= kappa^-1`` and the leg
+    limits at ``k`` points of W_p's boundary on every slice (D: 11 slices over the range;
+    kappa^-1 on the two range ends as in (5.39)) -- smooth constraints, solved by SciPy
+    SLSQP from the suite's start, the thesis's d* of Tables 5.3-5.5 and ``n_starts``
+    perturbations of it (fixed seed).  Returns the best d found whose constraints hold,
+    its t, and `exact_enclosure` of it: an independent reference for what any solver of
+    the chord formulation can reach in our model.  Not a proof of global optimality.
+    """
+    from scipy.optimize import minimize
+
+    s = SETTINGS[kind.lower()]
+    P = PRESCRIBED3[prescribed]
+    phis = np.linspace(min(s["phis"]), max(s["phis"]), 11) if s["dextrous"] else np.asarray(s["phis"])
+    kphis = np.array([min(s["phis"]), max(s["phis"])]) if s["dextrous"] else phis
+    B = P.points(k)
+    n_c = k * 6 * len(phis) + k * len(kphis)
+
+    def cons(z):
+        m = design(z[:5])
+        if m is None:
+            return -np.ones(n_c)
+        legs = np.concatenate([m.constraints(B, p)[:, :6].ravel() for p in phis])
+        kv = np.concatenate([m.inverse_condition(B, p) for p in kphis])
+        return np.concatenate([-legs, kv - z[5]])
+
+    ref = _thesis_row(s["table"], prescribed)
+    starts = [np.asarray(s["start"], float)] + ([ref["d_star"]] if ref else [])
+    rng = np.random.default_rng(seed)
+    centre = starts[-1]
+    starts += [centre + rng.normal(0.0, 0.15, 5) * np.array([1, 0.5, 1, 1, 0.5]) for _ in range(n_starts)]
+    best = None
+    for x0 in starts:
+        res = minimize(lambda z: -z[5], np.append(x0, 0.5), jac=lambda z: np.r_[np.zeros(5), -1.0], method="SLSQP",
+                       constraints=[{"type": "ineq", "fun": cons}], options={"maxiter": 200, "ftol": 1e-10})
+        if cons(res.x).min() > -1e-7 and (best is None or res.x[5] > best[5]):
+            best = res.x
+    if best is None:
+        return {"d": None, "kinv": float("nan"), "enclosed": False, "ratio": float("nan")}
+    out = {"d": best[:5], "kinv": float(best[5])}
+    out.update(exact_enclosure(kind, best[:5], prescribed))
+    return out
