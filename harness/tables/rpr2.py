@@ -94,6 +94,11 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
                "the chord-0.5 boundary; 'f ours at d*' recomputes it with our chord method (its discretization "
                "differs from the thesis's), 'f exact' uses exact annulus geometry.",
                f"Flagged: a thesis algorithm of ours ending above {O_LIMIT} (issue 5 acceptance).",
+               "Not reproduced (flagged): Dynamic-Q from SP3 reaches f = 0.642 and then cycles (period 7, "
+               "f between 0.665 and 1.03) until its 300-iteration cap; Algorithm 3.2 returns the last iterate "
+               "(0.885). ETOPC is a reconstruction (Sec. 4.4 gives no details); from SP3 it ends at 0.6609.",
+               "SLSQP and Ipopt ending at 2.483 = area(W_p)/2 stepped to a design with an empty workspace "
+               "(dW_c = 0, dW_p = area(W_p)), a flat region where every difference gradient is 0.",
                "Complex [84] is the literature value of Gosselin and Guillot.",
                "N^g counts gradient evaluations (forward differences, Gamma = 1e-5); N^fg distinct points."])
 
@@ -126,7 +131,13 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
     return Table(name="table_4_7", title="Table 4.7: E synthesis (chord 0.1): min dW_c s.t. dW_p = 0",
                  frame=frame, flags=fl,
                  notes=["f* = dW_c and h* = dW_p by the triangle scheme; 'exact' columns from exact geometry.",
-                        f"Flagged: Dynamic-Q f* not within {E_REL:.0%} of the thesis or exact dW_p > 0.01."])
+                        f"Flagged: Dynamic-Q f* not within {E_REL:.0%} of the thesis or exact dW_p > 0.01.",
+                        "Not reproduced: Dynamic-Q never meets its stopping tests (3.10)/(3.11) here: the iterates "
+                        "oscillate across the steep-sided valley of dW_p = 0 that the thesis describes (Sec. 4.6.2; "
+                        "its own runs needed 253-573 N^g and ended with h* = 1e-3..7e-3), so it ends on the "
+                        "400-iteration cap at its last iterate.",
+                        "Ipopt steps to a design with an empty workspace (h = dW_p = area(W_p) = 4.966, constant there) "
+                        "and reports a locally infeasible problem."])
 
 
 def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:

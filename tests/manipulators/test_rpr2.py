@@ -71,3 +71,32 @@ def test_invalid_designs_raise_clear_errors(kw, msg):
 def test_interior_point_is_strictly_inside():
     u = R.interior_point()
     assert np.all(R.constraints(u[None]) < 0)
+
+
+def test_interior_point_is_the_mid_range_pose_eq_c7():
+    """Appendix C.4: u0 has both legs at mid-range, so it moves continuously with the design."""
+    u0 = R.interior_point()
+    mid = 0.5 * (np.array(R.l_min) + np.array(R.l_max))
+    assert np.allclose(R.leg_lengths(u0[None, :])[0], mid, atol=1e-12)
+
+
+def test_discretized_o_objective_has_no_steps_under_small_perturbations():
+    """The radiating point of the chord trace must not jump between designs 1e-5 apart
+    (a grid argmax did: forward differences at SP4 read gradients of ~4e2)."""
+    from manipulators.synthesis.rpr2_suite import STARTS, o_problem
+
+    f = o_problem("SP4").objective
+    x = np.array(STARTS["SP4"])
+    g = [np.array([(f(x + h * e) - f(x)) / h for e in np.eye(5)]) for h in (1e-5, 1e-3)]
+    assert np.max(np.abs(g[0])) < 5.0
+    assert np.allclose(g[0], g[1], atol=0.05)
+
+
+def test_trace_narrower_than_the_chord_is_redone_and_encloses_the_radiating_point():
+    """A thin crescent whose tip is narrower than d = 0.5: the first trace turned back on
+    itself (area 0.001 for an exact 4.92); the re-trace at a smaller chord is accurate."""
+    m = RPR2(-1.001, -1.009, 4.216, (3.187, 4.998), (1.5 * 3.187, 1.5 * 4.998))
+    ws = m.workspace(0.5)
+    assert ws.info.get("refined_from") == 0.5
+    assert ws.contains(m.interior_point()[None, :])[0]
+    assert abs(ws.area - m.exact_region().area) < 0.01 * m.exact_region().area
