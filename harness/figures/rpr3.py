@@ -89,10 +89,35 @@ def _panel(ax, kind, d, pnames, title):
     ax.legend(fontsize=6, loc="lower left")
 
 
+def _solver_color(name: str):
+    """One colour per solver in every panel (the suite's solvers in order, others grey)."""
+    import matplotlib.pyplot as plt
+
+    from manipulators.synthesis.rpr3_suite import SOLVERS
+
+    return plt.cm.tab10(SOLVERS.index(name)) if name in SOLVERS else "0.5"
+
+
 def plt_colors(n):
     import matplotlib.pyplot as plt
 
     return plt.cm.tab10(np.arange(n))
+
+
+def _best_run(kind: str, pname: str, sub: pd.DataFrame):
+    """The best f* among runs whose d* encloses W_p (exact check); else the least infeasible run."""
+    from manipulators.synthesis.rpr3_suite import exact_enclosure
+
+    best, best_key = None, None
+    for _, r in sub.iterrows():
+        x = np.asarray(r["x"], dtype=float)
+        if x.shape != (5,) or not np.all(np.isfinite(x)):
+            continue
+        ex = exact_enclosure(kind, x, pname)
+        key = (0, r["f"]) if ex["enclosed"] else (1, ex["ratio"])
+        if best_key is None or key < best_key:
+            best, best_key = r, key
+    return best, best_key is not None and best_key[0] == 0
 
 
 def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
@@ -118,15 +143,13 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         fig2, axes2 = plt.subplots(1, 3, figsize=(13, 3.5))
         for ax, ax2, pn in zip(axes, axes2, ("P1", "P2", "P3")):
             sub = runs[runs["problem"] == f"rpr3-{kind}-{pn.lower()}"]
-            feas = sub[sub["max_violation"] <= 1e-6]
-            best = (feas if len(feas) else sub).sort_values("f").head(1)
-            if len(best):
-                r = best.iloc[0]
+            r, enclosed = _best_run(kind, pn, sub)
+            if r is not None:
                 _panel(ax, kind, np.asarray(r["x"], float), [pn],
-                       f"{pn}: {r['solver']} f* = {-r['f']:.3f}")
+                       f"{pn}: {r['solver']} f* = {-r['f']:.3f}" + ("" if enclosed else " (W_p NOT enclosed)"))
             for _, r in sub.iterrows():
                 h = np.asarray(json.loads(r["history"]) or [[0, np.nan, np.nan]], dtype=float)
-                ax2.plot(h[:, 0], -h[:, 1], lw=1, label=r["solver"])
+                ax2.plot(h[:, 0], -h[:, 1], lw=1, label=r["solver"], color=_solver_color(r["solver"]))
             ax2.set_xlabel("N^fg")
             ax2.set_ylabel("min kappa^-1")
             ax2.set_title(pn, fontsize=8)
