@@ -133,10 +133,10 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
                  frame=frame, flags=fl,
                  notes=["f* = dW_c and h* = dW_p by the triangle scheme; 'exact' columns from exact geometry.",
                         f"Flagged: Dynamic-Q f* not within {E_REL:.0%} of the thesis or exact dW_p > 0.01.",
-                        "Not reproduced: Dynamic-Q never meets its stopping tests (3.10)/(3.11) here: the iterates "
-                        "oscillate across the steep-sided valley of dW_p = 0 that the thesis describes (Sec. 4.6.2; "
-                        "its own runs needed 253-573 N^g and ended with h* = 1e-3..7e-3), so it ends on the "
-                        "400-iteration cap at its last iterate.",
+                        "Dynamic-Q stops on (3.10) as printed (at infeasible iterates too, as the thesis's h* > 0 show). "
+                        "From SP2 it reproduces the thesis (f* 2.836 vs 2.850). Not reproduced from SP1, SP3, SP4: it "
+                        "ends with the prescribed workspace enclosed to exact dW_p < 0.01 but at designs with a narrower "
+                        "base (x_B - x_A = 5.7-6.5, f* 4.2-4.4) than the thesis's (8.2-9.1, f* 2.9-3.2).",
                         "Ipopt steps to a design with an empty workspace (h = dW_p = area(W_p) = 4.966, constant there) "
                         "and reports a locally infeasible problem."])
 
