@@ -126,10 +126,14 @@ def test_boundaries_are_closed_and_counterclockwise(xA, yA, xB, l1, l2, k1, k2, 
         return
     assert ws.info["closed"]
     assert is_ccw(ws.boundary)
+    # a trace that missed the radiating point is redone at a halved chord (RPR2.workspace)
+    dc = ws.info["chord"]
+    assert dc == d or (ws.info.get("refined_from") == d and dc < d)
+    assert ws.contains(r.interior_point()[None, :])[0]
     traced = ws.boundary[ws.active >= 0]  # without the inserted bifurcation points
     gaps = np.hypot(*np.diff(np.vstack((traced, traced[:1])), axis=0).T)
-    assert np.allclose(gaps[:-1], d, atol=1e-8)  # constant chord length
-    assert gaps[-1] <= 2 * d + 1e-8  # closure (C.14): b^n within d of b^1 was dropped
+    assert np.allclose(gaps[:-1], dc, atol=1e-8)  # constant chord length
+    assert gaps[-1] <= 2 * dc + 1e-8  # closure (C.14): b^n within d of b^1 was dropped
     assert polygon_area(ws.boundary) == pytest.approx(ws.area)
 
 
