@@ -239,22 +239,8 @@ def _caps(kind: str) -> dict[str, dict[str, Any]]:
     opts["scipy-cobyla"] = {"rhobeg": s["rho"], "tol": s["eps_x"], "maxfev": 600}
     opts["scipy-slsqp"] = {"maxiter": 100 if kind == "o" else 40}
     opts["ipopt"] = {"max_iter": 100 if kind == "o" else 40}
-    opts["nlopt-mma"] = {"maxeval": 300, "max_eval": 300}
-    return {k: _valid(k, v) for k, v in opts.items()}
-
-
-def _valid(solver: str, options: dict[str, Any]) -> dict[str, Any]:
-    """Keep only the options the solver has (solvers written in parallel may name their
-    caps differently; an unknown option would be an error at run time)."""
-    if solver == "*":
-        return options
-    try:
-        from solvers import get_solver_class
-
-        names = {o["name"] for o in get_solver_class(solver).options()}
-    except Exception:  # noqa: BLE001  (solver not available: its options do not matter)
-        return {}
-    return {k: v for k, v in options.items() if k in names}
+    opts["nlopt-mma"] = {"maxeval": 300}
+    return opts
 
 
 def _build() -> list[Case]:

@@ -347,18 +347,7 @@ def _options(kind: str) -> dict[str, dict[str, Any]]:
         "ipopt": {"max_iter": 30},
         "nlopt-mma": {"maxeval": 60, "maxtime": 600.0},
     }
-    return {k: _valid(k, v) for k, v in opts.items()}
-
-
-def _valid(solver: str, options: dict[str, Any]) -> dict[str, Any]:
-    """Only the options the solver has (solvers written in parallel may name caps differently)."""
-    try:
-        from solvers import get_solver_class
-
-        names = {o["name"] for o in get_solver_class(solver).options()}
-    except Exception:  # noqa: BLE001  (solver not available: its options do not matter)
-        return {}
-    return {k: v for k, v in options.items() if k in names}
+    return opts
 
 
 def _build() -> list[Case]:

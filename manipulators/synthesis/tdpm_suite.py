@@ -116,18 +116,6 @@ def tdpm_problem(cables: int, load: str, start: Any) -> Problem:
     )
 
 
-def _valid(solver: str, options: dict[str, Any]) -> dict[str, Any]:
-    """Keep the options a solver has (solvers are written in parallel; an unknown option
-    would be an error at run time)."""
-    try:
-        from solvers import get_solver_class
-
-        names = {o["name"] for o in get_solver_class(solver).options()}
-    except Exception:  # noqa: BLE001  (solver not available: its options do not matter)
-        return {}
-    return {k: v for k, v in options.items() if k in names}
-
-
 def _options() -> dict[str, dict[str, Any]]:
     """rho = 0.1 (Section 6.6.2). Established solvers' tolerances [OWN]: the objective changes
     in steps of one grid cell (~1e-3 of A_d), so finer tolerances only add evaluations; caps
@@ -140,7 +128,7 @@ def _options() -> dict[str, dict[str, Any]]:
         "scipy-slsqp": {"maxiter": 40, "ftol": 1e-6},
         "nlopt-mma": {"maxeval": 80, "xtol_rel": 1e-4, "ftol_rel": 1e-5},
     }
-    return {k: _valid(k, v) for k, v in opts.items()}
+    return opts
 
 
 def _build() -> list[Case]:
