@@ -27,7 +27,6 @@ objective, not an arbitrary penalty. A P-synthesis design with xA == xB has kapp
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
 from collections.abc import Callable
 from typing import Any
 
@@ -40,6 +39,7 @@ from ..objectives import (delta_areas, delta_areas_exact, enclosure_constraint, 
 from ..prescribed import P1, PRESCRIBED, Prescribed
 from ..rpr2 import RPR2, inverse_condition
 from ..workspace import Workspace
+from ._design_cache import DesignCache
 
 __all__ = ["SUITE", "STARTS", "P_START", "design_o", "design_p", "o_problem", "e_problem", "p_problem",
            "evaluate", "SETTINGS"]
@@ -93,28 +93,20 @@ class _Workspaces:
     """Chord workspaces of recent designs (objective and constraints at one point share one)."""
 
     def __init__(self, build: Callable[[np.ndarray], RPR2 | None], chord: float, size: int = 16):
-        self.build, self.chord, self.size = build, chord, size
-        self._cache: OrderedDict[bytes, tuple[RPR2 | None, Workspace]] = OrderedDict()
+        self.build, self.chord = build, chord
+        self._memo: DesignCache[tuple[RPR2 | None, Workspace]] = DesignCache(size)
 
     def __call__(self, d) -> tuple[RPR2 | None, Workspace]:
-        d = np.asarray(d, dtype=float)
-        key = d.tobytes()
-        hit = self._cache.get(key)
-        if hit is not None:
-            self._cache.move_to_end(key)
-            return hit
+        return self._memo.get(d, self._compute)
+
+    def _compute(self, d: np.ndarray) -> tuple[RPR2 | None, Workspace]:
         m = self.build(d) if np.all(np.isfinite(d)) else None
         if m is None:
-            ws = Workspace.empty(reason="invalid design")
-        else:
-            try:
-                ws = m.workspace(self.chord)
-            except Exception as exc:  # noqa: BLE001  (never crash mid-run; the design counts as empty)
-                ws = Workspace.empty(reason=f"chord method failed: {exc}")
-        self._cache[key] = (m, ws)
-        if len(self._cache) > self.size:
-            self._cache.popitem(last=False)
-        return m, ws
+            return m, Workspace.empty(reason="invalid design")
+        try:
+            return m, m.workspace(self.chord)
+        except Exception as exc:  # noqa: BLE001  (never crash mid-run; the design counts as empty)
+            return m, Workspace.empty(reason=f"chord method failed: {exc}")
 
 
 # ------------------------------------------------------------------ problems

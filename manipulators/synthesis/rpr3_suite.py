@@ -33,7 +33,6 @@ centre), so g keeps a slope towards feasibility; kappa^-1 is still defined (f <=
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
 from typing import Any
 
 import numpy as np
@@ -44,6 +43,7 @@ from ..objectives import delta_areas, delta_areas_exact, min_inverse_condition, 
 from ..prescribed import Prescribed, chapter5_workspaces
 from ..rpr3 import RPR3
 from ..workspace import Workspace
+from ._design_cache import DesignCache
 
 __all__ = ["SUITE", "SETTINGS", "START_SO", "START_MO", "PRESCRIBED3", "synthesis_problem", "evaluate",
            "exact_enclosure", "exact_optimum", "design"]
@@ -85,8 +85,7 @@ class _Evaluator:
         s = SETTINGS[kind]
         self.kind, self.P, self.s = kind, P, s
         self.chord = chord or s["chord"]
-        self.size = size
-        self._cache: OrderedDict[bytes, tuple[RPR3 | None, list[Workspace]]] = OrderedDict()
+        self._memo: DesignCache[tuple[RPR3 | None, list[Workspace]]] = DesignCache(size)
         self._wp = None  # W_p as a shapely polygon, made on first use
 
     # one workspace per slice (SO, MO) or the dextrous workspace (D)
@@ -112,24 +111,16 @@ class _Evaluator:
         return out
 
     def __call__(self, d) -> tuple[RPR3 | None, list[Workspace]]:
-        d = np.asarray(d, dtype=float)
-        key = d.tobytes()
-        hit = self._cache.get(key)
-        if hit is not None:
-            self._cache.move_to_end(key)
-            return hit
+        return self._memo.get(d, self._compute)
+
+    def _compute(self, d: np.ndarray) -> tuple[RPR3 | None, list[Workspace]]:
         m = design(d)
         if m is None:
-            wss = [Workspace.empty(reason="invalid design")]
-        else:
-            try:
-                wss = self._workspaces(m)
-            except Exception as exc:  # noqa: BLE001  (empty workspace or chord failure: never crash a run)
-                wss = [Workspace.empty(reason=f"{type(exc).__name__}: {exc}")]
-        self._cache[key] = (m, wss)
-        if len(self._cache) > self.size:
-            self._cache.popitem(last=False)
-        return m, wss
+            return m, [Workspace.empty(reason="invalid design")]
+        try:
+            return m, self._workspaces(m)
+        except Exception as exc:  # noqa: BLE001  (empty workspace or chord failure: never crash a run)
+            return m, [Workspace.empty(reason=f"{type(exc).__name__}: {exc}")]
 
     # ---------------------------------------------------------------- f and g
     def kinv(self, d) -> float:
