@@ -80,6 +80,11 @@ class DynamicQ(AbstractSolver):
                                         "[OWN] (same feasible set; keeps LFOPC's phase 1 within its step cap)")
     clip_to_bounds: bool = option(True, "project the subproblem solution onto the exact bounds (3.7)",
                                   "[OWN]: the bounds are exact, LFOPC's penalty leaves ~1e-9 excess")
+    on_cap: str = option("best", "point returned when max_iter ends the run: 'best' = the best feasible "
+                         "iterate (the least infeasible one if none is feasible), 'last' = the last iterate",
+                         "[OWN]: the thesis is silent on the cap; its '$' runs report no point. 'last' is "
+                         "the literal reading of Alg. 3.2; 'best' keeps a run that cycles near the optimum "
+                         "from returning a worse point")
 
     def __post_init__(self) -> None:
         for k in ("rho", "sub_delta"):
@@ -103,6 +108,8 @@ class DynamicQ(AbstractSolver):
             raise ValueError(f"dynamic-q: curvature_clip must be one of {CLIPS}, got {self.curvature_clip!r}")
         if self.move_centre not in CENTRES:
             raise ValueError(f"dynamic-q: move_centre must be one of {CENTRES}, got {self.move_centre!r}")
+        if self.on_cap not in ("best", "last"):
+            raise ValueError(f"dynamic-q: on_cap must be 'best' or 'last', got {self.on_cap!r}")
 
     # ------------------------------------------------------------------ helpers
     def _clip(self, a: float, b: np.ndarray) -> tuple[float, np.ndarray]:
@@ -131,6 +138,7 @@ class DynamicQ(AbstractSolver):
         log: list[dict[str, Any]] = []
         n_sub_steps = 0
         step_prev: np.ndarray | None = None
+        x_best, best_key = x, (1, math.inf, math.inf)  # (infeasible?, violation, f): smallest is best
         for i in range(self.max_iter + 1):
             # Step 1: evaluate everything at x^i (one N^fg)
             ev = oracle.evaluate(x)
@@ -169,6 +177,9 @@ class DynamicQ(AbstractSolver):
                 step_prev = d_now
             if feasible and (f_best is None or f < f_best):
                 f_best = f
+            key = (0, 0.0, f) if feasible else (1, viol, f)
+            if key < best_key:
+                x_best, best_key = x, key
             if i == self.max_iter:
                 break
             # Step 2: curvatures (3.6); P[0] linear
@@ -196,7 +207,10 @@ class DynamicQ(AbstractSolver):
             x_centre_prev = x
             prev = {"x": x, "f": f, "ineq": ev["ineq"], "eq": ev["eq"]}
             x = x_new
-        return SolverOutput(x, Status.MAX_ITER, f"max_iter = {self.max_iter} outer iterations reached",
+        if self.on_cap == "best":
+            x = x_best
+        return SolverOutput(x, Status.MAX_ITER, f"max_iter = {self.max_iter} outer iterations reached"
+                            f" (returned: {self.on_cap} iterate)",
                             nit=self.max_iter, extra=self._extra(log, n_sub_steps, f_best))
 
     def _subproblem(self, x, ev, curv, lo, up, centre, rho) -> SphericalSubproblem:

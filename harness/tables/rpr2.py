@@ -95,9 +95,10 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
                "equals the thesis's f* to 1e-4 for 10 of its 16 rows; at the others the 4-digit d* falls on a "
                "different number of chord points), 'f exact' uses exact annulus geometry.",
                f"Flagged: a thesis algorithm of ours ending above {O_LIMIT} (issue 5 acceptance).",
-               "Not reproduced (flagged): Dynamic-Q from SP3 reaches f = 0.642 and then cycles (period 7, "
-               "f between 0.665 and 1.03) until its 300-iteration cap; Algorithm 3.2 returns the last iterate "
-               "(0.885). ETOPC is a reconstruction (Sec. 4.4 gives no details); from SP3 it ends at 0.6609.",
+               "Dynamic-Q from SP3 reaches f = 0.642 and then cycles (period 7, f between 0.665 and 1.03) "
+               "until its 300-iteration cap; at the cap it returns its best feasible iterate (option "
+               "on_cap='best'; the literal last iterate, on_cap='last', is at 0.885). Not reproduced "
+               "(flagged): ETOPC is a reconstruction (Sec. 4.4 gives no details); from SP3 it ends at 0.6609.",
                "SLSQP and Ipopt ending at 2.483 = area(W_p)/2 stepped to a design with an empty workspace "
                "(dW_c = 0, dW_p = area(W_p)), a flat region where every difference gradient is 0.",
                "Complex [84] is the literature value of Gosselin and Guillot.",

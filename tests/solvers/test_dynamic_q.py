@@ -144,3 +144,22 @@ def test_nonfinite_region_is_backtracked_out_of():
     assert any(it["n_backtracks"] for it in r.extra["iterations"])
     r0 = solve(p, "dynamic-q", nonfinite_backtrack=0)
     assert r0.status is Status.ERROR
+
+
+def test_on_cap_returns_the_best_feasible_iterate():
+    """At the iteration cap, on_cap='best' returns the best feasible iterate seen, 'last' the last."""
+    import numpy as np
+
+    from problems import Problem
+    from solvers import Status, solve
+
+    # Rosenbrock in a disc: a few Dynamic-Q iterations do not converge, iterates vary
+    p = Problem(name="rosen-disc", x0=[-1.2, 1.0],
+                objective=lambda x: 100 * (x[1] - x[0] ** 2) ** 2 + (1 - x[0]) ** 2,
+                ineq=lambda x: np.array([x @ x - 2.0]))
+    best = solve(p, "dynamic-q", max_iter=4, on_cap="best")
+    last = solve(p, "dynamic-q", max_iter=4, on_cap="last")
+    assert best.status is Status.MAX_ITER and last.status is Status.MAX_ITER
+    feas = [r["f"] for r in best.extra["iterations"] if r["max_violation"] < 1e-6]
+    assert feas and best.f == pytest.approx(min(feas), rel=1e-12)
+    assert best.f <= last.f
