@@ -17,7 +17,7 @@ import shapely
 from .workspace import Workspace, chord_boundary
 from .workspace._polygon import as_points
 
-__all__ = ["RPR2", "CONSTRAINT_NAMES", "inverse_condition"]
+__all__ = ["RPR2", "CONSTRAINT_NAMES", "inverse_condition", "lens_area"]
 
 CONSTRAINT_NAMES = ("l1 >= l1_min", "l1 <= l1_max", "l2 >= l2_min", "l2 <= l2_max", "y >= yA")
 
@@ -32,6 +32,27 @@ def inverse_condition(xA: float, yA: float, xB: float, U) -> np.ndarray:
     dy = U[:, 1] - yA
     with np.errstate(divide="ignore", invalid="ignore"):
         return dy * (xB - xA) / (np.hypot(U[:, 0] - xA, dy) * np.hypot(U[:, 0] - xB, dy))
+
+
+def lens_area(r, R, c) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Area L(r, R, c) of the intersection of two disks of radii r, R whose centres are c
+    apart, and its derivatives (dL/dr, dL/dR, dL/dc); vectorized (broadcasting).
+
+    With alpha, beta the half-angles of the arcs of each circle that lie inside the other,
+    cos alpha = (c^2 + r^2 - R^2) / (2 c r): L = r^2 alpha + R^2 beta - c r sin alpha, and
+    dL/dr = 2 r alpha, dL/dR = 2 R beta (arc lengths), dL/dc = -2 r sin alpha (the common
+    chord). Disjoint disks (c >= r + R): 0; nested (c <= |R - r|): pi min(r, R)^2. L is C^1
+    in (r, R, c) for c > 0 (alpha -> pi or 0 at the transitions).
+    """
+    r, R, c = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (r, R, c)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = np.arccos(np.clip((c * c + r * r - R * R) / (2 * c * r), -1.0, 1.0))
+        b = np.arccos(np.clip((c * c + R * R - r * r) / (2 * c * R), -1.0, 1.0))
+    far, nest = c >= r + R, c <= np.abs(R - r)
+    a = np.where(far, 0.0, np.where(nest, np.where(r <= R, np.pi, 0.0), a))
+    b = np.where(far, 0.0, np.where(nest, np.where(r <= R, 0.0, np.pi), b))
+    h = r * np.sin(a)  # half the common chord (0 when disjoint or nested)
+    return r * r * a + R * R * b - c * h, 2 * r * a, 2 * R * b, -2 * h
 
 
 @dataclasses.dataclass(frozen=True)
@@ -211,6 +232,32 @@ class RPR2:
             ws = chord_boundary(self.constraints, u0, d, **kw)
             ws.info["refined_from"] = float(chord)
         return ws
+
+    def exact_area(self, grad: bool = False):
+        """Closed-form area of the workspace above the base line (the thesis's W_c,
+        Section 4.3 and Appendix D; eqs. 4.4 and 4.13 with y >= yA).
+
+        The 2-RPR workspace is the intersection of the annuli A_i = disk(l_i^max) minus
+        disk(l_i^min) about the pivots A and B, both on the base line c = |xB - xA| apart, so
+        by inclusion-exclusion of disk-disk lens areas L (`lens_area`)
+        area(A1 n A2) = L(R1, R2) - L(R1, r2) - L(r1, R2) + L(r1, r2)  (r = l^min, R = l^max),
+        and the region is mirrored about the base line: W_c is half of it.
+
+        ``grad=True`` also returns the gradient with respect to
+        (xA, yA, xB, l1_min, l2_min, l1_max, l2_max) (yA does not enter: 0).
+        """
+        c = abs(self.xB - self.xA)
+        (r1, r2), (R1, R2) = self.l_min, self.l_max
+        L, dr, dR, dc = lens_area([R1, R1, r1, r1], [R2, r2, R2, r2], c)
+        s = np.array([0.5, -0.5, -0.5, 0.5])  # inclusion-exclusion signs, halved
+        area = float(s @ L)
+        if not grad:
+            return area
+        g = s * dr, s * dR, s @ dc  # per lens: d/d(first radius), d/d(second radius)
+        sgn = np.sign(self.xB - self.xA)
+        return area, np.array([-sgn * g[2], 0.0, sgn * g[2],
+                               g[0][2] + g[0][3], g[1][1] + g[1][3],  # r1 is lens 3, 4's first; r2 lens 2, 4's second
+                               g[0][0] + g[0][1], g[1][0] + g[1][2]])
 
     def exact_region(self, quad_segs: int = 1024) -> shapely.Geometry:
         """The exact workspace (two annuli intersected, above the base line) as a shapely

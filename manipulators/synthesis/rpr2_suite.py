@@ -42,7 +42,7 @@ from ..workspace import Workspace
 from ._design_cache import DesignCache
 
 __all__ = ["SUITE", "STARTS", "P_START", "design_o", "design_p", "o_problem", "e_problem", "p_problem",
-           "evaluate", "SETTINGS"]
+           "evaluate", "SETTINGS", "exact_e_problem", "exact_polish", "exact_optimum", "thesis_e_designs"]
 
 # Table 4.2: O/E synthesis starting designs d0 = [xA, yA, xB, l1min, l2min]
 STARTS = {
@@ -202,6 +202,128 @@ def evaluate(kind: str, d, prescribed: Prescribed | str = "P1", chord: float | N
         out["kinv_exact"] = kinv
         out["f_exact"] = {"o": 0.5 * dwp_x + 0.5 * dwc_x, "e": dwc_x, "p": kinv}[k]
     return out
+
+
+# ------------------------------------------------------------------ the exact E problem
+EXACT_K = 512  # points of W_p's boundary at which the exact E problem's leg limits are imposed
+
+
+def thesis_e_designs() -> dict[str, np.ndarray]:
+    """Table 4.7's published d* per start (empty if the reference data are unavailable)."""
+    try:
+        from harness.reference import thesis_table
+
+        t = thesis_table("table_4_7_E_synthesis")
+    except Exception:  # noqa: BLE001  (reference data optional at run time)
+        return {}
+    return {r["start"]: np.array([float(r[c]) for c in ("x_A", "y_A", "x_B", "l1_min", "l2_min")])
+            for _, r in t.iterrows()}
+
+
+def exact_e_problem(prescribed: Prescribed | str = "P1", k: int = EXACT_K):
+    """E synthesis (4.14) in exact, smooth form: ``(f, cons)`` for SciPy, each returning
+    (value, derivative) of the design vector d = [xA, yA, xB, l1min, l2min] (l_max = 1.5 l_min).
+
+    W_p is inside W_c iff (i) W_p lies above the base line, y_min(W_p) >= yA, and (ii) every
+    leg length over W_p's boundary lies in [l_i^min, 1.5 l_i^min] (4.4, 4.13). (ii) suffices
+    for the annuli because the far side of an annulus (unbounded) and its hole are each
+    connected and, if they miss dW_p, lie wholly inside or wholly outside W_p: the far side
+    is unbounded, so outside; the hole contains its pivot, which is on the base line and
+    so, by (i), not an interior point of W_p (also: a hole of radius l_min ~ 5 cannot fit
+    in P1, whose inscribed radius is < 1.2). Then h = dW_p = 0 and dW_c = area(W_c) -
+    area(W_p), so (4.14) is exactly: min ``RPR2.exact_area`` - area(W_p) subject to ``cons``
+    >= 0, the leg limits at ``k`` equally spaced boundary points (4k values) and (i).
+    Both analytic: no chord method, no triangle scheme (4.9), no finite differences.
+    """
+    P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
+    B = P.points(k)
+    y_min = float(min(B[:, 1].min(), P.points(16 * k)[:, 1].min()))
+    a_p = float(P.area())
+
+    def f(d):
+        m = design_o(d)
+        if m is None:  # xA == xB or l_min <= 0: SLSQP's bounds keep l_min > 0
+            return a_p, np.zeros(5)
+        a, g = m.exact_area(grad=True)  # g by (xA, yA, xB, r1, r2, R1, R2), R = 1.5 r
+        return a - a_p, np.array([g[0], g[1], g[2], g[3] + LMAX_RATIO * g[5], g[4] + LMAX_RATIO * g[6]])
+
+    def cons(d):
+        xA, yA, xB, r1, r2 = np.asarray(d, dtype=float)
+        dy = B[:, 1] - yA
+        l1, l2 = np.hypot(B[:, 0] - xA, dy), np.hypot(B[:, 0] - xB, dy)
+        e1x, e1y, e2x, e2y = (B[:, 0] - xA) / l1, dy / l1, (B[:, 0] - xB) / l2, dy / l2
+        z, one = np.zeros(k), np.ones(k)
+        val = np.concatenate([l1 - r1, LMAX_RATIO * r1 - l1, l2 - r2, LMAX_RATIO * r2 - l2, [y_min - yA]])
+        jac = np.vstack([np.column_stack([-e1x, -e1y, z, -one, z]),
+                         np.column_stack([e1x, e1y, z, LMAX_RATIO * one, z]),
+                         np.column_stack([z, -e2y, -e2x, z, -one]),
+                         np.column_stack([z, e2y, e2x, z, LMAX_RATIO * one]),
+                         [[0.0, -1.0, 0.0, 0.0, 0.0]]])
+        return val, jac
+
+    return f, cons
+
+
+def _slsqp(d0, f, cons, maxiter: int = 300):
+    from scipy.optimize import minimize
+
+    return minimize(lambda d: f(d)[0], np.asarray(d0, dtype=float), jac=lambda d: f(d)[1], method="SLSQP",
+                    bounds=[(None, None)] * 3 + [(0.05, None)] * 2,
+                    constraints=[{"type": "ineq", "fun": lambda d: cons(d)[0], "jac": lambda d: cons(d)[1]}],
+                    options={"maxiter": maxiter, "ftol": 1e-12})
+
+
+def exact_polish(d0, prescribed: Prescribed | str = "P1", k: int = EXACT_K) -> dict[str, Any]:
+    """The local minimum of the exact E problem (`exact_e_problem`) that SciPy SLSQP reaches
+    from d0 (e.g. a Dynamic-Q d* of Table 4.7).
+
+    Returns ``d0``, ``f0`` = area(W_c) - area(W_p) at d0 and ``viol0`` (largest constraint
+    violation there, 0 if W_p is enclosed), ``d``, ``f`` (same at the end), ``viol``,
+    ``drop`` = f0 - f, ``step`` = |d - d0| and ``success``.  A drop of ~0 with a small step
+    says d0 is (near) a genuine local minimum of (4.14); a large drop says the solver of the
+    discretized problem stopped short of one.
+    """
+    f, cons = exact_e_problem(prescribed, k)
+    d0 = np.asarray(d0, dtype=float)
+    res = _slsqp(d0, f, cons)
+    viol = lambda d: float(max(0.0, -cons(d)[0].min()))  # noqa: E731
+    return {"d0": d0, "f0": float(f(d0)[0]), "viol0": viol(d0), "d": res.x, "f": float(f(res.x)[0]),
+            "viol": viol(res.x), "drop": float(f(d0)[0] - f(res.x)[0]), "step": float(np.linalg.norm(res.x - d0)),
+            "success": bool(res.success)}
+
+
+def exact_optimum(kind: str = "e", prescribed: Prescribed | str = "P1", n_starts: int = 12, k: int = EXACT_K,
+                  seed: int = 0) -> dict[str, Any]:
+    """The best design of the exact E problem (4.14) (`exact_e_problem`), for Table 4.7.
+
+    SciPy SLSQP (analytic derivatives) from SP1-SP4 (Table 4.2), the thesis's d* of Table 4.7
+    and ``n_starts`` seeded perturbations of the best of those; keeps the best end point whose
+    constraints hold (to 1e-7). Returns ``d``, ``f`` (= dW_c, with dW_p = 0), ``starts`` (the
+    number of starts) and ``ends`` (every start's f, or nan if it ended infeasible). An
+    independent reference for what any solver of the chord formulation can reach; a
+    multistart, not a proof of global optimality. Only kind "e" has an exact form here.
+    """
+    if kind.lower() != "e":
+        raise ValueError(f"exact_optimum: only kind 'e' (E synthesis, 4.14), got {kind!r}")
+    f, cons = exact_e_problem(prescribed, k)
+    ends: list[tuple[float, np.ndarray]] = []
+
+    def run(x0):
+        res = _slsqp(x0, f, cons)
+        ok = cons(res.x)[0].min() > -1e-7
+        ends.append((float(f(res.x)[0]) if ok else float("nan"), res.x))
+
+    for x0 in list(STARTS.values()) + list(thesis_e_designs().values()):
+        run(x0)
+    rng = np.random.default_rng(seed)
+    centre = min((e for e in ends if np.isfinite(e[0])), key=lambda e: e[0])[1]
+    for _ in range(n_starts):
+        run(centre + rng.normal(0.0, 1.0, 5) * np.array([1.0, 0.5, 1.0, 0.5, 0.5]))
+    fin = [e for e in ends if np.isfinite(e[0])]
+    if not fin:
+        return {"d": None, "f": float("nan"), "starts": len(ends), "ends": [e[0] for e in ends]}
+    fb, db = min(fin, key=lambda e: e[0])
+    return {"d": db, "f": fb, "starts": len(ends), "ends": [e[0] for e in ends]}
 
 
 # ------------------------------------------------------------------ the suite

@@ -100,3 +100,52 @@ def test_trace_narrower_than_the_chord_is_redone_and_encloses_the_radiating_poin
     assert ws.info.get("refined_from") == 0.5
     assert ws.contains(m.interior_point()[None, :])[0]
     assert abs(ws.area - m.exact_region().area) < 0.01 * m.exact_region().area
+
+
+# ---------------------------------------------------------------- closed-form area (lens inclusion-exclusion)
+def _random_designs(n=40, seed=3):
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        lo = rng.uniform(0.3, 5.0, 2)
+        out.append(RPR2(rng.uniform(-4, 0), rng.uniform(-2, 2), rng.uniform(0.05, 6), tuple(lo),
+                        tuple(lo + rng.uniform(0.1, 4.0, 2))))
+    return out
+
+
+SPECIAL = [
+    RPR2(-5.0, 0.0, 5.0, (1.0, 1.0), (2.0, 3.0)),    # disjoint outer disks: area 0
+    RPR2(-1.0, 0.0, 1.0, (4.0, 0.5), (5.0, 1.0)),    # annulus 2 wholly inside hole 1: area 0
+    RPR2(-0.1, 0.3, 0.1, (1.0, 2.0), (6.0, 3.0)),    # annulus 2 nested in annulus 1
+    RPR2(-0.1, 0.3, 0.1, (1.0, 1.5), (3.0, 4.0)),    # nearly concentric, holes nested
+    RPR2(-2.0, 0.0, 2.0, (1.0, 1.0), (2.0, 2.0)),    # outer circles tangent (c = R1 + R2)
+    RPR2(-1.5, 0.0, 1.5, (1.0, 1.0), (4.0, 4.0)),    # hole circles touch (c = r1 + r2)
+    RPR2(-0.5, 0.0, 0.5, (2.0, 1.0), (3.0, 4.0)),    # internally tangent circles (c = r1 - r2, R2 - R1)
+    RPR2(3.0, -1.0, -3.0, (5.0, 5.5), (7.5, 8.25)),  # xB < xA
+]
+
+
+@pytest.mark.parametrize("m", _random_designs() + SPECIAL)
+def test_exact_area_matches_the_shapely_region(m):
+    # exact_region approximates circles by 4096-gons (relative area error ~1e-7)
+    assert m.exact_area() == pytest.approx(m.exact_region().area, rel=1e-6, abs=1e-6 * max(m.l_max) ** 2)
+
+
+def test_exact_area_of_disjoint_and_empty_cases_is_zero():
+    assert SPECIAL[0].exact_area() == 0.0 and SPECIAL[1].exact_area() == pytest.approx(0.0, abs=1e-12)
+    # annulus 2 inside annulus 1: half the area of annulus 2
+    assert SPECIAL[2].exact_area() == pytest.approx(0.5 * np.pi * (3.0**2 - 2.0**2), rel=1e-12)
+
+
+# (not at the tangent cases: L is C^1 there, but central differences err by ~sqrt(h))
+@pytest.mark.parametrize("m", _random_designs(12, seed=5) + SPECIAL[2:4] + SPECIAL[7:])
+def test_exact_area_gradient_against_central_differences(m):
+    a, g = m.exact_area(grad=True)
+    v = np.array([m.xA, m.yA, m.xB, *m.l_min, *m.l_max])
+    h = 1e-6
+
+    def area(w):
+        return RPR2(w[0], w[1], w[2], (w[3], w[4]), (w[5], w[6])).exact_area()
+
+    fd = np.array([(area(v + h * e) - area(v - h * e)) / (2 * h) for e in np.eye(7)])
+    assert np.allclose(g, fd, atol=1e-6)

@@ -44,3 +44,38 @@ def test_p3_synthesis_short_cobyla_run_improves_and_encloses():
     r = solve(p, "scipy-cobyla", rhobeg=0.2, tol=1e-3, maxfev=60)
     assert -r.f > 0.88 and r.max_violation <= 1e-6
     assert evaluate("p", r.x, "P3")["enclosed"]
+
+
+# ---------------------------------------------------------------- the exact E problem (4.14)
+def test_exact_e_problem_derivatives_against_finite_differences():
+    from scipy.optimize import approx_fprime
+
+    from manipulators.synthesis.rpr2_suite import exact_e_problem
+
+    f, cons = exact_e_problem(k=64)
+    d = np.array([-4.2, -2.4, 3.9, 5.5, 5.4])
+    assert np.allclose(f(d)[1], approx_fprime(d, lambda x: f(x)[0], 1e-7), atol=1e-5)
+    J = np.array([approx_fprime(d, lambda x, i=i: cons(x)[0][i], 1e-7) for i in range(4 * 64 + 1)])
+    assert np.allclose(cons(d)[1], J, atol=1e-5)
+
+
+def test_exact_e_value_is_dwc_of_the_shapely_geometry_when_enclosed():
+    from manipulators.synthesis.rpr2_suite import exact_e_problem
+
+    f, cons = exact_e_problem()
+    d = np.array([-4.8, -2.4, 4.8, 5.8, 5.8])  # encloses P1 with margin
+    assert cons(d)[0].min() > 0
+    ev = evaluate("e", d)
+    assert ev["dwp_exact"] < 1e-9 and f(d)[0] == pytest.approx(ev["dwc_exact"], abs=1e-4)
+
+
+def test_exact_e_optimum_and_polish_from_a_narrow_base_design():
+    from manipulators.synthesis.rpr2_suite import exact_optimum, exact_polish
+
+    opt = exact_optimum("e", n_starts=2)
+    assert opt["f"] == pytest.approx(3.1436, abs=1e-3)
+    ev = evaluate("e", opt["d"])
+    assert ev["dwp_exact"] < 1e-6 and ev["dwc_exact"] == pytest.approx(opt["f"], abs=1e-4)
+    # Dynamic-Q's d* from SP1 (Table 4.7, narrow base): not a local minimum of the exact problem
+    pol = exact_polish([-2.863, -2.967, 2.812, 5.305, 5.288])
+    assert pol["viol"] < 1e-7 and pol["drop"] > 0.9 and pol["f"] == pytest.approx(opt["f"], abs=1e-3)
