@@ -331,6 +331,61 @@ class RPR3:
             per_leg.append(orient.allowed_arcs(P[0], Q[0], alpha[0], self.lmin[i], self.lmax[i]))
         return orient.intersect_arcs(per_leg)
 
+    def enclosing_orientations(self, U, *, tol: float = 0.0, branch: str | None = "upper") -> list[tuple[float, float]]:
+        """Platform orientations ``phi`` at which *every* point of ``U`` is in ``W^C[phi]``.
+
+        The intersection over the points of their orientation sets (eqs. 5.7, 5.26): for
+        each point and leg ``l_i^2(w) = P + Q cos(w - alpha)`` (`_orientation`), so the
+        leg limits (5.3) forbid at most two open arcs of ``w`` -- ``|w - alpha| < a_lo``
+        (leg too long) and ``|w - alpha - pi| < pi - a_hi`` (too short).  The allowed set
+        is the circle minus the union of all the points' forbidden arcs, computed by one
+        sort and a running maximum (vectorized over points; exact, no sampling of ``w``).
+
+        With ``U`` the boundary of a prescribed workspace W_p this is the set of phi at
+        which W_p is enclosed in ``W^C[phi]`` (eq. 5.14): an annulus's hole (radius
+        ``l_min >= 1``) cannot fit inside the small W_p, so W_p is in the annulus iff its
+        boundary is (see `rpr3_suite.exact_optimum`).  MO synthesis (5.37) asks the
+        slices to lie in this set, D synthesis (5.39) the whole range ``[phi_min,
+        phi_max]`` (eq. 5.22).
+
+        tol : leg-length slack; the limits become ``[l_min - tol, l_max + tol]``.
+        branch : ``"upper"`` (default, as `constraints`): no orientation if a point has
+            ``y < y_C``; ``None``: leg limits only.
+
+        Returns disjoint intervals ``(lo, hi)`` of positive length in ``[-pi, pi]``
+        (radians, sorted; a set containing phi = +-pi is split there).
+        """
+        U = _points(U)
+        if branch == "upper":
+            if np.any(U[:, 1] < self.yC):
+                return []
+        elif branch is not None:
+            raise ValueError(f"branch must be 'upper' or None, got {branch!r}")
+        centres, halves = [], []
+        for i, (P, Q, alpha) in enumerate(self._cosine_legs(U)):
+            a_lo, a_hi, empty = orient._half_widths(P, Q, self.lmin[i] - tol, self.lmax[i] + tol)
+            if np.any(empty):
+                return []
+            centres += [alpha, alpha + np.pi]
+            halves += [a_lo, np.pi - a_hi]
+        c, h = np.concatenate(centres), np.concatenate(halves)
+        c, h = c[h > 0.0], h[h > 0.0]
+        if np.any(h >= np.pi):
+            return []
+        lo = orient.wrap_pi(c - h)
+        lo = np.where(lo >= np.pi, -np.pi, lo)  # [-pi, pi)
+        hi = lo + 2.0 * h
+        over = hi > np.pi  # split the arcs that cross +-pi
+        lo = np.concatenate([lo, np.full(over.sum(), -np.pi)])
+        hi = np.concatenate([np.minimum(hi, np.pi), hi[over] - 2.0 * np.pi])
+        order = np.argsort(lo, kind="stable")
+        lo, hi = lo[order], hi[order]
+        reach = np.maximum.accumulate(hi)  # right end of the union so far
+        gap_lo = np.concatenate([[-np.pi], reach])
+        gap_hi = np.concatenate([lo, [np.pi]])
+        keep = gap_hi > gap_lo
+        return [(float(a), float(b)) for a, b in zip(gap_lo[keep], gap_hi[keep])]
+
     # ------------------------------------------------------------------ workspaces
     def workspace(self, phi: float = 0.0, chord: float = 0.02, **kw):
         """Constant-orientation workspace ``W^C[phi]`` by the chord method (Section 5.4)."""
