@@ -53,6 +53,8 @@ def environment() -> dict[str, Any]:
         "git_dirty": None if status is None else bool(status),
         "machine": {"hostname": socket.gethostname(), "platform": platform.platform(),
                     "processor": platform.processor() or platform.machine(), "cpu_count": os.cpu_count()},
+        # OpenBLAS kernels decide the rounding of rounding-sensitive runs (harness/_blas.py)
+        "blas": {v: os.environ.get(v) for v in ("OPENBLAS_CORETYPE", "OPENBLAS_NUM_THREADS")},
     }
 
 
