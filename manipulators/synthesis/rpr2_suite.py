@@ -264,66 +264,77 @@ def exact_e_problem(prescribed: Prescribed | str = "P1", k: int = EXACT_K):
     return f, cons
 
 
-def _slsqp(d0, f, cons, maxiter: int = 300):
+def _slsqp(d0, f, cons, maxiter: int = 300, bounds=None):
     from scipy.optimize import minimize
 
     return minimize(lambda d: f(d)[0], np.asarray(d0, dtype=float), jac=lambda d: f(d)[1], method="SLSQP",
-                    bounds=[(None, None)] * 3 + [(0.05, None)] * 2,
+                    bounds=bounds or [(None, None)] * 3 + [(0.05, None)] * 2,
                     constraints=[{"type": "ineq", "fun": lambda d: cons(d)[0], "jac": lambda d: cons(d)[1]}],
                     options={"maxiter": maxiter, "ftol": 1e-12})
 
 
-def exact_polish(d0, prescribed: Prescribed | str = "P1", k: int = EXACT_K) -> dict[str, Any]:
-    """The local minimum of the exact E problem (`exact_e_problem`) that SciPy SLSQP reaches
-    from d0 (e.g. a Dynamic-Q d* of Table 4.7).
+def exact_polish(d0, prescribed: Prescribed | str = "P1", k: int = EXACT_K, box: float = 0.05) -> dict[str, Any]:
+    """Is d0 (e.g. a Dynamic-Q d* of Table 4.7) a local minimum of the exact E problem
+    (`exact_e_problem`)?
 
-    Returns ``d0``, ``f0`` = area(W_c) - area(W_p) at d0 and ``viol0`` (largest constraint
-    violation there, 0 if W_p is enclosed), ``d``, ``f`` (same at the end), ``viol``,
-    ``drop`` = f0 - f, ``step`` = |d - d0| and ``success``.  A drop of ~0 with a small step
-    says d0 is (near) a genuine local minimum of (4.14); a large drop says the solver of the
-    discretized problem stopped short of one.
+    Returns ``f0`` = area(W_c) - area(W_p) at d0 and ``viol0`` (largest constraint violation
+    there, 0 if W_p is enclosed); ``f_proj`` at ``d_proj``, the feasible design nearest to d0,
+    and ``box_drop``, how far f falls from there within ``box`` of it in every component (a
+    local test: ~0 at a local minimum); ``d``, ``f``, ``viol`` where SciPy SLSQP ends from d0
+    (the local minimum it reaches), ``drop`` = f0 - f and ``step`` = |d - d0|.
     """
+    from scipy.optimize import minimize
+
     f, cons = exact_e_problem(prescribed, k)
     d0 = np.asarray(d0, dtype=float)
-    res = _slsqp(d0, f, cons)
     viol = lambda d: float(max(0.0, -cons(d)[0].min()))  # noqa: E731
-    return {"d0": d0, "f0": float(f(d0)[0]), "viol0": viol(d0), "d": res.x, "f": float(f(res.x)[0]),
-            "viol": viol(res.x), "drop": float(f(d0)[0] - f(res.x)[0]), "step": float(np.linalg.norm(res.x - d0)),
+    proj = minimize(lambda d: float((d - d0) @ (d - d0)), d0, jac=lambda d: 2 * (d - d0), method="SLSQP",
+                    constraints=[{"type": "ineq", "fun": lambda d: cons(d)[0], "jac": lambda d: cons(d)[1]}],
+                    options={"maxiter": 200, "ftol": 1e-14}).x
+    local = _slsqp(proj, f, cons, bounds=list(zip(proj - box, proj + box))).x
+    res = _slsqp(d0, f, cons)
+    f0, fp, fe = (float(f(x)[0]) for x in (d0, proj, res.x))
+    return {"d0": d0, "f0": f0, "viol0": viol(d0), "d_proj": proj, "f_proj": fp,
+            "box_drop": fp - float(f(local)[0]) if viol(local) < 1e-7 else float("nan"),
+            "d": res.x, "f": fe, "viol": viol(res.x), "drop": f0 - fe, "step": float(np.linalg.norm(res.x - d0)),
             "success": bool(res.success)}
 
 
-def exact_optimum(kind: str = "e", prescribed: Prescribed | str = "P1", n_starts: int = 12, k: int = EXACT_K,
+def exact_optimum(kind: str = "e", prescribed: Prescribed | str = "P1", n_starts: int = 24, k: int = EXACT_K,
                   seed: int = 0) -> dict[str, Any]:
     """The best design of the exact E problem (4.14) (`exact_e_problem`), for Table 4.7.
 
     SciPy SLSQP (analytic derivatives) from SP1-SP4 (Table 4.2), the thesis's d* of Table 4.7
-    and ``n_starts`` seeded perturbations of the best of those; keeps the best end point whose
-    constraints hold (to 1e-7). Returns ``d``, ``f`` (= dW_c, with dW_p = 0), ``starts`` (the
-    number of starts) and ``ends`` (every start's f, or nan if it ended infeasible). An
-    independent reference for what any solver of the chord formulation can reach; a
-    multistart, not a proof of global optimality. Only kind "e" has an exact form here.
+    and ``n_starts`` seeded random designs (xA in [-8, 0], yA in [-4, y_min(W_p)], xB in
+    [0, 8], l_min in [2, 7]); keeps the ends whose constraints hold (to 1e-7). Returns ``d``,
+    ``f`` (= dW_c, with dW_p = 0) of the best, ``starts`` (number of starts) and ``minima``:
+    the distinct local minima reached, ``(f, d, count)`` sorted by f (ends within 1e-6 in f
+    counted as one). An independent reference for what any solver of the chord formulation
+    can reach; a multistart, not a proof of global optimality. Only kind "e" here.
     """
     if kind.lower() != "e":
         raise ValueError(f"exact_optimum: only kind 'e' (E synthesis, 4.14), got {kind!r}")
-    f, cons = exact_e_problem(prescribed, k)
-    ends: list[tuple[float, np.ndarray]] = []
-
-    def run(x0):
-        res = _slsqp(x0, f, cons)
-        ok = cons(res.x)[0].min() > -1e-7
-        ends.append((float(f(res.x)[0]) if ok else float("nan"), res.x))
-
-    for x0 in list(STARTS.values()) + list(thesis_e_designs().values()):
-        run(x0)
+    P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
+    f, cons = exact_e_problem(P, k)
     rng = np.random.default_rng(seed)
-    centre = min((e for e in ends if np.isfinite(e[0])), key=lambda e: e[0])[1]
-    for _ in range(n_starts):
-        run(centre + rng.normal(0.0, 1.0, 5) * np.array([1.0, 0.5, 1.0, 0.5, 0.5]))
-    fin = [e for e in ends if np.isfinite(e[0])]
-    if not fin:
-        return {"d": None, "f": float("nan"), "starts": len(ends), "ends": [e[0] for e in ends]}
-    fb, db = min(fin, key=lambda e: e[0])
-    return {"d": db, "f": fb, "starts": len(ends), "ends": [e[0] for e in ends]}
+    lo = np.array([-8.0, -4.0, 0.0, 2.0, 2.0])
+    hi = np.array([0.0, float(P.points(k)[:, 1].min()), 8.0, 7.0, 7.0])
+    starts = list(STARTS.values()) + list(thesis_e_designs().values()) + list(rng.uniform(lo, hi, (n_starts, 5)))
+    minima: list[list] = []
+    for x0 in starts:
+        x = _slsqp(x0, f, cons).x
+        if cons(x)[0].min() < -1e-7:
+            continue
+        fx = float(f(x)[0])
+        same = [m for m in minima if abs(m[0] - fx) < 1e-6]
+        if same:
+            same[0][2] += 1
+        else:
+            minima.append([fx, x, 1])
+    minima.sort(key=lambda m: m[0])
+    if not minima:
+        return {"d": None, "f": float("nan"), "starts": len(starts), "minima": []}
+    return {"d": minima[0][1], "f": minima[0][0], "starts": len(starts), "minima": [tuple(m) for m in minima]}
 
 
 # ------------------------------------------------------------------ the suite

@@ -69,13 +69,19 @@ def test_exact_e_value_is_dwc_of_the_shapely_geometry_when_enclosed():
     assert ev["dwp_exact"] < 1e-9 and f(d)[0] == pytest.approx(ev["dwc_exact"], abs=1e-4)
 
 
-def test_exact_e_optimum_and_polish_from_a_narrow_base_design():
+def test_exact_e_minima_and_polish_from_a_narrow_base_design():
     from manipulators.synthesis.rpr2_suite import exact_optimum, exact_polish
 
-    opt = exact_optimum("e", n_starts=2)
-    assert opt["f"] == pytest.approx(3.1436, abs=1e-3)
-    ev = evaluate("e", opt["d"])
-    assert ev["dwp_exact"] < 1e-6 and ev["dwc_exact"] == pytest.approx(opt["f"], abs=1e-4)
+    opt = exact_optimum("e", n_starts=8)
+    # two local minima: base line through W_p's lowest point (y = 1.82), and below W_p
+    assert [round(m[0], 3) for m in opt["minima"]] == [2.309, 3.144]
+    assert opt["d"][1] == pytest.approx(1.82, abs=1e-6) and opt["f"] == opt["minima"][0][0]
+    for f_m, d_m, _ in opt["minima"]:
+        ev = evaluate("e", d_m)
+        assert ev["dwp_exact"] < 1e-6 and ev["dwc_exact"] == pytest.approx(f_m, abs=1e-4)
     # Dynamic-Q's d* from SP1 (Table 4.7, narrow base): not a local minimum of the exact problem
     pol = exact_polish([-2.863, -2.967, 2.812, 5.305, 5.288])
-    assert pol["viol"] < 1e-7 and pol["drop"] > 0.9 and pol["f"] == pytest.approx(opt["f"], abs=1e-3)
+    assert pol["viol"] < 1e-7 and pol["drop"] > 0.9 and pol["f"] == pytest.approx(3.1436, abs=1e-3)
+    assert pol["box_drop"] > 0.03
+    # at a local minimum the box test finds no descent
+    assert abs(exact_polish(opt["minima"][1][1])["box_drop"]) < 1e-6
