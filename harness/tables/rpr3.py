@@ -9,7 +9,8 @@
   N^g, f(d0), f*, g*, d*, with the exact enclosure check at d*
   (`manipulators.synthesis.rpr3_suite.exact_enclosure`).
 
-Flags: f* below the thesis's f* - 0.01, or W_p not enclosed at d* (exact check).
+Flags: f* below the thesis's f* - 0.01, W_p not enclosed at d* (exact check), or the exact enclosing
+orientations of d* (`rpr3_suite.enclosing_window`) missing the ones the synthesis requires.
 """
 
 from __future__ import annotations
@@ -89,6 +90,23 @@ def _best_enclosed(kind: str, pname: str, sub: pd.DataFrame) -> float | None:
     return best
 
 
+def _window(kind: str, d, pname: str) -> tuple[str, bool]:
+    """The exact enclosing orientations of d (degrees) as a cell, and whether they miss the
+    orientations the synthesis requires (`rpr3_suite.enclosing_window`)."""
+    from manipulators.synthesis.rpr3_suite import enclosing_window
+
+    if d is None or np.asarray(d).shape != (5,) or not np.all(np.isfinite(d)):
+        return "", False
+    w = enclosing_window(d, pname, kind=kind)
+    if w["intervals"]:
+        cell = " U ".join(f"[{math.degrees(a):.2f}, {math.degrees(b):.2f}]" for a, b in w["intervals"])
+    elif math.isfinite(w["slack"]):
+        cell = f"none (legs {w['slack']:.2g} over at {math.degrees(w['phi_slack']):.1f})"
+    else:
+        cell = "none"
+    return cell, not w["covers"]
+
+
 def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
     """Table 5.3 / 5.4 / 5.5: ours beside the thesis's, with the exact enclosure check."""
     from manipulators.synthesis.rpr3_suite import SETTINGS, evaluate, exact_optimum, synthesis_problem
@@ -103,25 +121,29 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
         sub = runs[runs["problem"] == pid] if len(runs) else runs
         best_ok = _best_enclosed(kind, pname, sub)
         opt = exact_optimum(kind, pname, n_starts=n_starts)  # what the exact model allows (independent of the chord formulation)
+        win, miss = _window(kind, opt["d"], pname)
         rows.append({
             "P": pname, "solver": "(exact-model optimum)", "status": "", "N^fg": None, "N^f": None,
             "f(d0)": round(f0, 4), "f*": round(opt["kinv"], 4), "g*": None,
             "d*": "" if opt["d"] is None else "[" + ", ".join(f"{v:.4g}" for v in opt["d"]) + "]",
             "exact dW_p/W_p": float(f"{opt['ratio']:.2g}"), "enclosed": bool(opt["enclosed"]),
             "leg excess": float(f"{opt.get('max_leg_violation', float('nan')):.2g}"),
+            "phi window (deg)": win,
             "f* (thesis)": th.get("f_star"), "f(d0) (thesis)": th.get("f_d0"), "N^g (thesis)": th.get("ng"),
             "g* (thesis)": th.get("g_star"), "d* (thesis)": "", "time_s": None,
         })
         flags.append({k: False for k in rows[-1]} | {
-            "f*": th.get("f_star") is not None and not (opt["kinv"] >= th["f_star"] - F_TOL)})
+            "f*": th.get("f_star") is not None and not (opt["kinv"] >= th["f_star"] - F_TOL), "phi window (deg)": miss})
         if "d_star" in th:  # the published design, checked in our model
             ev_t = evaluate(kind, th["d_star"], pname)
+            win, miss = _window(kind, th["d_star"], pname)
             rows.append({
                 "P": pname, "solver": "(thesis d*)", "status": "", "N^fg": None, "N^f": None,
                 "f(d0)": round(f0, 4), "f*": round(ev_t["kinv"], 4), "g*": float(f"{ev_t.get('g', float('nan')):.2g}"),
                 "d*": "", "exact dW_p/W_p": float(f"{ev_t.get('ratio', float('nan')):.2g}"),
                 "enclosed": bool(ev_t.get("enclosed", False)),
                 "leg excess": float(f"{ev_t.get('max_leg_violation', float('nan')):.2g}"),
+                "phi window (deg)": win,
                 "f* (thesis)": th.get("f_star"), "f(d0) (thesis)": th.get("f_d0"), "N^g (thesis)": th.get("ng"),
                 "g* (thesis)": th.get("g_star"),
                 "d* (thesis)": "[" + ", ".join(f"{v:.4g}" for v in th["d_star"]) + "]",
@@ -129,6 +151,7 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
             })
             flags.append({k: False for k in rows[-1]} | {
                 "enclosed": not bool(ev_t.get("enclosed", False)),
+                "phi window (deg)": miss,
                 # the published d* and its g* ~ 0 claim W_p enclosed: not so in our model
                 "d* (thesis)": not bool(ev_t.get("enclosed", False)),
                 "g* (thesis)": not bool(ev_t.get("enclosed", False)),
@@ -140,6 +163,7 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
             ev = evaluate(kind, x, pname) if ok else {}
             fstar = ev.get("kinv", float("nan"))
             enclosed = bool(ev.get("enclosed", False))
+            win, miss = _window(kind, x if ok else None, pname)
             rows.append({
                 "P": pname, "solver": r["solver"], "status": r["status"], "N^fg": int(r["nfg"]), "N^f": int(r["nf"]),
                 "f(d0)": round(f0, 4), "f*": round(fstar, 4), "g*": float(f"{ev.get('g', float('nan')):.2g}"),
@@ -147,13 +171,15 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
                 "exact dW_p/W_p": float(f"{ev.get('ratio', float('nan')):.2g}"),
                 "enclosed": enclosed,
                 "leg excess": float(f"{ev.get('max_leg_violation', float('nan')):.2g}"),
+                "phi window (deg)": win,
                 "f* (thesis)": th.get("f_star"), "f(d0) (thesis)": th.get("f_d0"), "N^g (thesis)": th.get("ng"),
                 "g* (thesis)": th.get("g_star"),
                 "d* (thesis)": "[" + ", ".join(f"{v:.4g}" for v in th["d_star"]) + "]" if "d_star" in th else "",
                 "time_s": round(float(r["wall_time_s"]), 1),
             })
             low = th.get("f_star") is not None and not (fstar >= th["f_star"] - F_TOL)
-            flags.append({k: False for k in rows[-1]} | {"f*": bool(low), "enclosed": not enclosed})
+            flags.append({k: False for k in rows[-1]} | {"f*": bool(low), "enclosed": not enclosed,
+                                                          "phi window (deg)": bool(miss and ok)})
     frame = pd.DataFrame(rows)
     s = SETTINGS[kind]
     notes = [
@@ -169,14 +195,25 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
         f"{F_TOL}; 'f(d0) (thesis)' when ours differs by more than {F0_TOL}; 'enclosed' when the published d* "
         "does not enclose W_p in our model (then also its 'd* (thesis)' and 'g* (thesis)').",
         "'(exact-model optimum)': the best design of our exact model (leg limits on W_p's boundary, no chord "
-        "method; multistart SciPy SLSQP from the start, the thesis's d* and 40 seeded perturbations; "
-        "a lower bound on the best, not a global proof: "
-        "rpr3_suite.exact_optimum) - a reference for what any solver can reach; flagged when below the thesis's "
-        f"f* - {F_TOL}, i.e. the thesis's f* is out of reach in our model.",
-        "Why thesis numbers are not reproduced: at the published MO/D designs (and SO/P1) the prescribed "
-        "workspace is not enclosed in our exact model of (5.7) (see the '(thesis d*)' rows: legs beyond their "
-        "limits at the +-5 degree slices), so our feasible set is smaller than the one the thesis's optima imply "
-        "and our optima are those of the harder problem (docs/rpr3.md).  MO/D f(d0): the thesis evaluated "
+        "method; rpr3_suite.exact_optimum): a global stage - SciPy differential evolution over the box "
+        "x_C in [-3, 1], y_C in [-1, 1.2], x_D, x_E in [-1, 3.5], r in [0.05, 2] (holds every design of these "
+        "tables; seed 0, 75 members, 150 generations) polished by SLSQP - and multistart SLSQP from the start, the "
+        f"thesis's d* and {n_starts} seeded perturbations; the best of all.  A reference for what any solver can "
+        f"reach, not a proof of global optimality; flagged when below the thesis's f* - {F_TOL}, i.e. the "
+        "thesis's f* is out of reach in our model.",
+        "phi window (deg): the exact set of platform orientations at which W_p is enclosed in W^C[phi] for the "
+        "row's d* - the intersection over 4096 points of W_p's boundary of each point's allowed orientations "
+        "(RPR3.enclosing_orientations, closed form from (5.7); no tolerance).  SO needs 0 in it, MO -5, 0, +5, "
+        "D all of [-5, +5].  'none (legs e over at p)': no orientation encloses W_p; e = the smallest "
+        "leg-length excess over W_p's boundary, reached at phi = p.  Flagged when the required orientations are "
+        "not in the set even with the leg limits widened by 1e-3 (designs on the constraint miss the exact set by "
+        "~1e-4; the 'enclosed' column's area tolerance is a different measure, so the two can differ by a hair).",
+        "Why thesis numbers are not reproduced: the published MO/D designs enclose P1 and P2 only over windows of "
+        "about 1.2-1.4 degrees (MO: [0.67, 2.10], [1.08, 2.26]; D P2: [1.12, 2.32]; D P1: at no orientation) "
+        "instead of the 10 degrees [-5, +5] their synthesis requires, and P3 over [-2.57, 12.01] (MO) and "
+        "[-4.87, 10.18] (D), not reaching -5 (see the '(thesis d*)' rows); SO/P1's d* encloses P1 only over "
+        "[2.25, 3.72], not at phi = 0.  So our feasible set is smaller than the one the thesis's optima imply and our "
+        "optima are those of the harder problem (docs/rpr3.md).  MO/D f(d0): the thesis evaluated "
         "kappa^-1 only at the polar angles of its computed boundary points of an infeasible start design; our "
         "exact minimum over the prescribed boundary is lower (ERRATA.md).",
         "N^fg counts distinct design points (oracle); the thesis's N^g counts gradient evaluations.",

@@ -110,3 +110,27 @@ def test_table_plugin_on_a_fake_run():
     # the exact-model reference reaches Table 5.3's f* for P2 (0.927) with W_p enclosed
     j = int(np.flatnonzero((t.frame["solver"] == "(exact-model optimum)") & (t.frame["P"] == "P2"))[0])
     assert t.frame.iloc[j]["f*"] >= 0.927 and t.frame.iloc[j]["enclosed"]
+
+
+def test_enclosing_window_of_published_designs():
+    """Exact enclosing orientations (RPR3.enclosing_orientations on W_p's boundary): the
+    published MO/P1 design encloses P1 only over [0.67, 2.10] degrees, D/P1's at none
+    (legs at least 1.05e-3 over, at phi ~ 0.31 degrees); SO/P2's includes phi = 0."""
+    from manipulators.synthesis.rpr3_suite import _thesis_row, enclosing_window
+
+    w = enclosing_window(_thesis_row("5.4", "P1")["d_star"], "P1", kind="mo")
+    assert np.degrees(w["intervals"]) == pytest.approx([[0.666, 2.098]], abs=2e-3)
+    assert w["covers"] is False and w["slack"] == 0.0
+    w = enclosing_window(_thesis_row("5.5", "P1")["d_star"], "P1", kind="d")
+    assert w["intervals"] == [] and w["slack"] == pytest.approx(1.046e-3, rel=1e-2)
+    assert math.degrees(w["phi_slack"]) == pytest.approx(0.313, abs=0.01)
+    w = enclosing_window(_thesis_row("5.3", "P2")["d_star"], "P2", kind="so")
+    assert w["covers"] and w["intervals"][0][0] < 0.0 < w["intervals"][0][1]
+
+
+def test_exact_optimum_global_stage_so_p2():
+    """Differential evolution over the wide box alone, then SLSQP, reaches Table 5.3's P2 optimum."""
+    from manipulators.synthesis.rpr3_suite import exact_optimum
+
+    out = exact_optimum("so", "P2", n_starts=0)
+    assert out["de_polished"] >= 0.932 and out["kinv"] >= out["de_polished"] and out["enclosed"]
