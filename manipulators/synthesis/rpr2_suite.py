@@ -294,6 +294,8 @@ def exact_polish(d0, prescribed: Prescribed | str = "P1", k: int = EXACT_K, box:
     local = _slsqp(proj, f, cons, bounds=list(zip(proj - box, proj + box))).x
     res = _slsqp(d0, f, cons)
     f0, fp, fe = (float(f(x)[0]) for x in (d0, proj, res.x))
+    if viol(proj) > 1e-7:  # no enclosing design found near d0 (e.g. a negative leg length): nothing to report
+        fp = float("nan")
     return {"d0": d0, "f0": f0, "viol0": viol(d0), "d_proj": proj, "f_proj": fp,
             "box_drop": fp - float(f(local)[0]) if viol(local) < 1e-7 else float("nan"),
             "d": res.x, "f": fe, "viol": viol(res.x), "drop": f0 - fe, "step": float(np.linalg.norm(res.x - d0)),
