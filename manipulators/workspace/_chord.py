@@ -142,6 +142,13 @@ def chord_boundary(
     while len(pts) < max_points:
         turn = (thetas[-1] - thetas[-2] + math.pi) % TWO_PI - math.pi if len(thetas) >= 2 else None
         step = _chord_step(ev, pts[-1], thetas[-1], d, base, tol, smooth, n_refine, turn)
+        if (step is not None and len(pts) >= 2 and act[-1] != act[-2] and step[1] == act[-2]
+                and np.hypot(*(step[0] - pts[-2])) < d):
+            # The last chord cut across a sharp convex corner (active constraint changed);
+            # the circle about the new point dips back into the thin wedge behind the
+            # corner and its first crossing lies on the curve just left, next to the point
+            # before: a step backwards, not the boundary ahead.  Take the next crossing.
+            step = _chord_step(ev, pts[-1], thetas[-1], d, base, tol, smooth, n_refine, turn, skip=1) or step
         if step is None:
             failure = f"lost the boundary after {len(pts)} points (no feasible crossing on the chord circle)"
             break
@@ -160,6 +167,12 @@ def chord_boundary(
         pts.pop()
         act.pop()
         thetas.pop()
+        # so may the point before it, when the last full chord already passed b^1 (the
+        # trace closing across a corner): it would double the polygon back over b^1
+        while len(pts) > 3 and np.hypot(*(pts[-1] - pts[0])) < d and np.dot(pts[-1] - pts[0], pts[-2] - pts[0]) < 0:
+            pts.pop()
+            act.pop()
+            thetas.pop()
     P = np.array(pts)
     A = np.array(act, dtype=int)
     T = np.array(thetas)
@@ -169,6 +182,9 @@ def chord_boundary(
     n_fail = 0
     if bifurcations and closed and P.shape[0] >= 3:
         P, A, bif_pts, n_fail = _insert_bifurcations(ev, P, A, T, d, tol, smooth, n_refine, base, jacobian)
+
+    if closed and P.shape[0] >= 3:
+        P, A = _remove_spikes(P, A, 10 * tol)
 
     reversed_ = False
     if P.shape[0] >= 3 and signed_area(P) < 0:  # only for pathological inputs
@@ -217,13 +233,14 @@ def _circle(b, d, angles):
     return out
 
 
-def _chord_step(ev, b, theta, d, base, tol, smooth, n_refine, turn=None):
+def _chord_step(ev, b, theta, d, base, tol, smooth, n_refine, turn=None, skip=0):
     """Next boundary point at distance d from b (C.12, reduced to the angle omega).
 
     ``turn``: predicted turn of the chord direction (the previous one; exact on circular
     arcs). The Newton pair at the predicted angle is evaluated in the same call as the
-    scan, so a smooth boundary usually costs two calls per point.
-    Returns (point, active index) or None if the circle has no feasible crossing.
+    scan, so a smooth boundary usually costs two calls per point.  ``skip``: take the
+    crossing after the first ``skip`` ones (counterclockwise from the backward direction).
+    Returns (point, active index) or None if the circle has no (such) feasible crossing.
     """
     ang = theta + base
     n = ang.size
@@ -238,10 +255,10 @@ def _chord_step(ev, b, theta, d, base, tol, smooth, n_refine, turn=None):
     v, j = v_all[:n], j_all[:n]
     feas = v <= 0
     trans = np.flatnonzero(~feas[:-1] & feas[1:])
-    if trans.size:
-        k = int(trans[0])
+    if skip < trans.size:
+        k = int(trans[skip])
         a, fa, ja, bb, fb = ang[k], v[k], int(j[k]), ang[k + 1], v[k + 1]
-    elif (not feas[-1]) and feas[0]:  # crossing straddles the backward direction
+    elif skip == trans.size and (not feas[-1]) and feas[0]:  # crossing straddles the backward direction
         a, fa, ja, bb, fb = ang[-1], v[-1], int(j[-1]), ang[0] + TWO_PI, v[0]
     else:
         return None
@@ -257,6 +274,25 @@ def _chord_step(ev, b, theta, d, base, tol, smooth, n_refine, turn=None):
         first = (pred, v_all[n:], j_all[n:])
     w, jw = solve_bracket(phi_w, a, bb, fa, fb, ja, xtol=xtol, smooth=smooth, n_refine=n_refine, first=first)
     return _circle(b, d, np.array([w]))[0], jw
+
+
+def _remove_spikes(P, A, eps):
+    """Drop zero-area spikes of a closed trace: repeated points, and there-and-back runs
+    ``..., p, q, p, ...`` (a chord step that returned to the point before, e.g. across the
+    sharp corner at the trace's start and end) become ``..., p, ...``.  They enclose no area
+    but make the polar angle about O' run backwards, which the triangle scheme (eq. 4.9)
+    would count twice."""
+    while P.shape[0] > 3:
+        d1 = np.hypot(*(np.roll(P, -1, axis=0) - P).T)
+        d2 = np.hypot(*(np.roll(P, -2, axis=0) - P).T)
+        hit = np.flatnonzero((d1 <= eps) | (d2 <= eps))
+        if not hit.size:
+            break
+        k, n = int(hit[0]), P.shape[0]
+        keep = np.ones(n, dtype=bool)
+        keep[[(k + 1) % n] if d1[k] <= eps else [(k + 1) % n, (k + 2) % n]] = False
+        P, A = P[keep], A[keep]
+    return P, A
 
 
 def _insert_bifurcations(ev, P, A, T, d, tol, smooth, n_refine, base, jacobian):

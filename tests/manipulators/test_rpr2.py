@@ -1,6 +1,7 @@
 """2-RPR kinematics (Section 4.3, Appendix D): Jacobian (4.22) and kappa^-1 (4.23)."""
 
 import numpy as np
+import shapely
 import pytest
 
 from manipulators import RPR2
@@ -93,13 +94,25 @@ def test_discretized_o_objective_has_no_steps_under_small_perturbations():
 
 
 def test_trace_narrower_than_the_chord_is_redone_and_encloses_the_radiating_point():
-    """A thin crescent whose tip is narrower than d = 0.5: the first trace turned back on
-    itself (area 0.001 for an exact 4.92); the re-trace at a smaller chord is accurate."""
-    m = RPR2(-1.001, -1.009, 4.216, (3.187, 4.998), (1.5 * 3.187, 1.5 * 4.998))
+    """A small lens (area 0.27) whose tips are narrower than d = 0.5: the first trace does not
+    close around the radiating point; the re-trace at a smaller chord is accurate."""
+    m = RPR2(-5.006011568544285, -0.10553532405737842, 5.598621135904642, (4.150287869114623, 3.1302070772501334),
+             (1.5 * 4.150287869114623, 1.5 * 3.1302070772501334))
     ws = m.workspace(0.5)
     assert ws.info.get("refined_from") == 0.5
     assert ws.contains(m.interior_point()[None, :])[0]
     assert abs(ws.area - m.exact_region().area) < 0.01 * m.exact_region().area
+
+
+def test_sharp_corner_at_the_start_of_the_trace_does_not_double_back():
+    """A thin crescent with a sharp tip next to b^1: the trace used to step across the tip
+    and back (area 0.001 for an exact 4.92, then a re-trace). Now the chord step skips the
+    crossing behind the corner: one simple trace that cuts only the tip narrower than d."""
+    m = RPR2(-1.001, -1.009, 4.216, (3.187, 4.998), (1.5 * 3.187, 1.5 * 4.998))
+    ws = m.workspace(0.5)
+    assert shapely.LinearRing(ws.boundary).is_simple
+    assert ws.contains(m.interior_point()[None, :])[0]
+    assert abs(ws.area - m.exact_region().area) < 0.025 * m.exact_region().area
 
 
 # ---------------------------------------------------------------- closed-form area (lens inclusion-exclusion)
