@@ -86,19 +86,27 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
     fl = pd.DataFrame(False, index=frame.index, columns=frame.columns)
     if len(frame):
         fl["f* (disc.)"] = flags
+    th_rows = frame[frame["source"] == "thesis"] if len(frame) else frame
+    same = sum(1 for _, r in th_rows.iterrows()
+               if r["f ours at d* (disc.)"] != "" and abs(float(r["f ours at d* (disc.)"]) - float(r["f* (disc.)"])) <= 1e-4)
+    ours = _ours(runs, "rpr2-o", start)
+    mine = ours[ours["solver"].isin(list(THESIS_NAMES.values())) & (ours["status"] != "not_applicable")]
+    above = [f"{r['solver']} {float(r['f']):.4f} ({r['status']})" for _, r in mine.iterrows()
+             if not (np.isfinite(r["f"]) and float(r["f"]) <= O_LIMIT)]
+    capped = [f"{r['solver']} ({float(r['f']):.4f})" for _, r in mine.iterrows() if r["status"] == "max_iter"]
+    verdict = (f"Not reproduced (flagged): {', '.join(above)}." if above else
+               f"Every thesis algorithm of ours ends at or below {O_LIMIT} from {start}"
+               + (f"; at the iteration cap (best iterate returned): {', '.join(capped)}." if capped else "."))
     return Table(
         name=f"table_{O_TABLES[start].replace('.', '_')}",
         title=f"Table {O_TABLES[start]}: O synthesis from {start} (chord 0.5, triangle scheme)",
         frame=frame, flags=fl,
         notes=["f* (disc.) is the objective minimized: 0.5 dW_p + 0.5 dW_c by the triangle scheme (4.9) on "
                "the chord-0.5 boundary; 'f ours at d*' recomputes it with our chord method at the printed d* (it "
-               "equals the thesis's f* to 1e-4 for 10 of its 16 rows; at the others the 4-digit d* falls on a "
-               "different number of chord points), 'f exact' uses exact annulus geometry.",
-               f"Flagged: a thesis algorithm of ours ending above {O_LIMIT} (issue 5 acceptance).",
-               "Dynamic-Q from SP3 reaches f = 0.642 and then cycles (period 7, f between 0.665 and 1.03) "
-               "until its 300-iteration cap; at the cap it returns its best feasible iterate (option "
-               "on_cap='best'; the literal last iterate, on_cap='last', is at 0.885). Not reproduced "
-               "(flagged): ETOPC is a reconstruction (Sec. 4.4 gives no details); from SP3 it ends at 0.6609.",
+               f"equals the thesis's f* to 1e-4 for {same} of the {len(th_rows)} thesis rows here; elsewhere the "
+               "4-digit d* falls on a different number of chord points), 'f exact' uses exact annulus geometry.",
+               f"Flagged: a thesis algorithm of ours ending above {O_LIMIT} (issue 5 acceptance). {verdict} "
+               "ETOPC is a reconstruction (Sec. 4.4 gives no details).",
                "SLSQP and Ipopt ending at 2.483 = area(W_p)/2 stepped to a design with an empty workspace "
                "(dW_c = 0, dW_p = area(W_p)), a flat region where every difference gradient is 0.",
                "Complex [84] is the literature value of Gosselin and Guillot.",
@@ -152,6 +160,25 @@ def _e_reading(minima: list, pols: dict) -> str:
         text += (f" The values below f = {f_loc:.4f} ({', '.join(f'{q[0]} {q[1]}' for q in below)}) are bought "
                  f"with h* > 0: W_p not quite enclosed, and the nearest enclosing design costs {_span(gap)} more.")
     return text
+
+
+def _e_dq_summary(runs: pd.DataFrame, thesis: pd.DataFrame) -> str:
+    """Which starts Dynamic-Q reproduces (f* within E_REL, exact dW_p <= 0.01), with base widths."""
+    good, bad = [], []
+    for _, t in thesis.iterrows():
+        r = _ours(runs, "rpr2-e", t["start"])
+        r = r[r["solver"] == "dynamic-q"]
+        if r.empty or len(r.iloc[0]["x"]) != 5:
+            continue
+        r = r.iloc[0]
+        ev = _evaluate("e", r["x"])
+        f, f_th = float(r["f"]), float(t["f_star"])
+        w, w_th = float(r["x"][2] - r["x"][0]), float(t["x_B"]) - float(t["x_A"])
+        txt = (f"{t['start']} f* {f:.3f} vs {f_th:.3f}, exact dW_p {float(ev.get('dwp_exact', math.nan)):.3g}, "
+               f"base x_B - x_A {w:.2f} vs {w_th:.2f}")
+        (good if abs(f - f_th) <= E_REL * f_th and ev.get("dwp_exact", 1.0) <= 0.01 else bad).append(txt)
+    out = f"Reproduced: {'; '.join(good)}." if good else "Reproduced from no start."
+    return out + (f" Not reproduced: {'; '.join(bad)}." if bad else "")
 
 
 def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
@@ -224,9 +251,7 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
                         "the exact problem, > 0 if the exact landscape still descends there.",
                         _e_reading(opt["minima"], pols),
                         "Dynamic-Q stops on (3.10) as printed (at infeasible iterates too, as the thesis's h* > 0 show). "
-                        "From SP2 it reproduces the thesis (f* 2.836 vs 2.850). Not reproduced from SP1, SP3, SP4: it "
-                        "ends with the prescribed workspace enclosed to exact dW_p < 0.01 but at designs with a narrower "
-                        "base (x_B - x_A = 5.7-6.5, f* 4.2-4.4) than the thesis's (8.2-9.1, f* 2.9-3.2).",
+                        + _e_dq_summary(runs, thesis),
                         "Ipopt steps to a design with an empty workspace (h = dW_p = area(W_p) = 4.966, constant there) "
                         "and reports a locally infeasible problem."])
 
