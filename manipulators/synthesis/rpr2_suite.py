@@ -349,12 +349,6 @@ def _caps(kind: str) -> dict[str, dict[str, Any]]:
     # "where applicable, move limits were set to rho = 0.2" (4.5.2): LFOP's step limit and
     # ETOP's largest step along a direction
     opts["lfopc"] = {"delta": s["rho"], "max_steps": 400}
-    if kind == "o":
-        # the stiffness guard [OWN] exists for penalty walls, which the unconstrained O
-        # problem has none of; with it, LFOP's time step shrinks on the discretized
-        # objective and its steps fall below eps_x after 40-70 gradients (measured f*
-        # 0.69-2.0 from SP1-SP4); without it, as in the thesis's LFOP, f* = 0.61-0.63
-        opts["lfopc"]["stiffness_guard"] = False
     opts["etopc"] = {"max_step": s["rho"]}
     # caps: about 3x the thesis's largest count for the same formulation (Tables 4.3-4.7:
     # N^g <= 509 for O, <= 573 for E, 12 for P), so that the suite fits in 10 minutes
