@@ -90,7 +90,9 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         fig, ax = plt.subplots(figsize=(6, 5))
         _draw_p(ax, P1, label="P1")
         sub = sub[np.isfinite(sub["f"].astype(float))].sort_values("f")
-        picks = sub if prob == "rpr2-e" else pd.concat([sub.head(1), sub.tail(1)])
+        # Fig. 4.10 is the thesis's Dynamic-Q designs from SP1-SP4 (E synthesis is Dynamic-Q only there)
+        picks = (sub[sub["solver"] == "dynamic-q"].sort_values("start") if prob == "rpr2-e"
+                 else pd.concat([sub.head(1), sub.tail(1)]))
         for _, r in picks.iterrows():
             x = _x(r["x"])
             if x.size == 5:
@@ -126,6 +128,8 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         sub = ok[(ok["problem"] == prob)] if len(ok) else ok
         if start is not None and len(sub):
             sub = sub[sub["start"] == start]
+        if prob == "rpr2-e" and len(sub):  # Fig. 4.11: the thesis's Dynamic-Q histories from SP1-SP4
+            sub = sub[sub["solver"] == "dynamic-q"].sort_values("start")
         if not len(sub):
             continue
         fig, ax = plt.subplots(figsize=(6, 4))
