@@ -111,6 +111,8 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
     """Table 5.3 / 5.4 / 5.5: ours beside the thesis's, with the exact enclosure check."""
     from manipulators.synthesis.rpr3_suite import SETTINGS, evaluate, exact_optimum, synthesis_problem
 
+    from .._memo import memo
+
     num, title = KINDS[kind]
     rows, flags = [], []
     for pname in ("P1", "P2", "P3"):
@@ -120,7 +122,9 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
         f0 = -float(prob.objective(prob.x0))
         sub = runs[runs["problem"] == pid] if len(runs) else runs
         best_ok = _best_enclosed(kind, pname, sub)
-        opt = exact_optimum(kind, pname, n_starts=n_starts)  # what the exact model allows (independent of the chord formulation)
+        # what the exact model allows (independent of the chord formulation); computed once per code version
+        opt = memo("rpr3-exact-optimum", ("manipulators.synthesis.rpr3_suite",), (kind, pname, n_starts),
+                   lambda k=kind, p=pname: exact_optimum(k, p, n_starts=n_starts))
         win, miss = _window(kind, opt["d"], pname)
         rows.append({
             "P": pname, "solver": "(exact-model optimum)", "status": "", "N^fg": None, "N^f": None,
