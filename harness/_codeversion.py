@@ -4,7 +4,9 @@ The sources are the transitive closure of project-internal imports (read with `a
 by importing) starting from the solver's module and the suite's module, plus the package
 ``__init__`` files on the way and the harness's row format.  Editing a cable-robot
 module therefore does not invalidate stored Appendix A runs, while editing LFOPC does
-invalidate Dynamic-Q runs (Dynamic-Q imports LFOPC).
+invalidate Dynamic-Q runs (Dynamic-Q imports LFOPC).  The name registries (``REGISTRIES``)
+are followed but not hashed: they map names to modules, and the modules a run uses are
+hashed themselves, so registering a new suite or solver invalidates no stored run.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ __all__ = ["code_version", "module_closure"]
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PACKAGES = ("problems", "solvers", "manipulators", "harness")
 ALWAYS = ("harness/_record.py", "harness/_worker.py")
+REGISTRIES = ("problems/_catalog.py", "solvers/_catalog.py")  # name -> module maps: followed, not hashed
 
 
 def _file_of(module: str) -> pathlib.Path | None:
@@ -84,6 +87,8 @@ def _hash(modules: tuple[str, ...], files: tuple[str, ...], stamp: tuple[float, 
     h = hashlib.sha256()
     paths = module_closure(modules) + [ROOT / a for a in ALWAYS] + [pathlib.Path(f) for f in files]
     for p in sorted(set(paths)):
+        if p.is_relative_to(ROOT) and p.relative_to(ROOT).as_posix() in REGISTRIES:
+            continue
         try:
             data = p.read_bytes()
         except OSError:

@@ -12,6 +12,7 @@ SUITES: dict[str, str] = {
     "appendix-a": "problems.appendix_a",
     "hs": "problems.hs",
     "rpr2": "manipulators.synthesis.rpr2_suite",
+    "rpr2-spread": "manipulators.synthesis.rpr2_spread_suite",
     "rpr3": "manipulators.synthesis.rpr3_suite",
     "tdpm": "manipulators.synthesis.tdpm_suite",
 }

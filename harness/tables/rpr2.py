@@ -253,7 +253,9 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
                         "Dynamic-Q stops on (3.10) as printed (at infeasible iterates too, as the thesis's h* > 0 show). "
                         + _e_dq_summary(runs, thesis),
                         "Ipopt steps to a design with an empty workspace (h = dW_p = area(W_p) = 4.966, constant there) "
-                        "and reports a locally infeasible problem."])
+                        "and reports a locally infeasible problem.",
+                        "How far Dynamic-Q's ends move when a start moves by 1e-6 (O and E): Table 4.7s, suite "
+                        "rpr2-spread (python -m harness run --suite rpr2-spread)."])
 
 
 def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:

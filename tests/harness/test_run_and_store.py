@@ -142,6 +142,21 @@ def test_code_version_follows_the_import_closure(tmp_path):
     assert code_version(("solvers.sqsd",), (str(f),)) != v1
 
 
+def test_name_registries_are_followed_but_not_hashed(monkeypatch):
+    """Registering a suite or solver (editing a catalog) must not invalidate stored runs."""
+    from harness import _codeversion as cv
+
+    mods = ("solvers.sqsd", "problems.hs")
+    closure = {p.relative_to(cv.ROOT).as_posix() for p in cv.module_closure(mods)}
+    assert set(cv.REGISTRIES) <= closure and "problems/hs/_build.py" in closure  # followed
+    cv._hash.cache_clear()
+    v = cv.code_version(mods)
+    monkeypatch.setattr(cv, "REGISTRIES", ())
+    cv._hash.cache_clear()
+    assert cv.code_version(mods) != v  # so by default their text is left out of the hash
+    cv._hash.cache_clear()
+
+
 def test_crash_between_parquet_replace_and_unlink_leaves_no_duplicates(tiny_file, tmp_path):
     """Consolidation killed after os.replace of runs.parquet but before deleting the run
     files: the rows exist twice on disk, once in every view of the store."""
