@@ -28,6 +28,7 @@ CENTRES = ("current", "literal")
 NORMALIZE = ("cap", "unit", "none")
 SQSD_C_MIN = 1e-60  # Algorithm 2.2: replacement for a negative curvature
 SAOI_A_MIN = 1e-5  # SAOi defaults.f atol1
+COMPROMISE_TOL = 1e-6  # a subproblem solution violating P[i]'s constraints by more is a compromise
 
 
 def _finite(ev: dict[str, Any]) -> bool:
@@ -199,7 +200,8 @@ class DynamicQ(AbstractSolver):
             solver = dataclasses.replace(self.subsolver, delta=self.sub_delta * rho)
             res = solver.solve_form(sub, x)
             n_sub_steps += res.ng
-            rec.update(sub_ng=res.ng, sub_reasons=[ph.reason for ph in res.phases], sub_active=res.active.count)
+            rec.update(sub_ng=res.ng, sub_reasons=[ph.reason for ph in res.phases], sub_active=res.active.count,
+                       sub_violation=float(res.max_violation))
             x_new = res.x
             if self.clip_to_bounds:
                 x_new = np.clip(x_new, lo, up)
@@ -229,5 +231,8 @@ class DynamicQ(AbstractSolver):
 
     @staticmethod
     def _extra(log: list[dict[str, Any]], n_sub_steps: int, f_best: float | None) -> dict[str, Any]:
-        return {"n_subproblems": max(len(log) - 1, 0), "n_sub_steps": n_sub_steps, "f_best": f_best,
-                "iterations": log}
+        # P[i] with no point meeting its approximate constraints: LFOPC returns its best compromise
+        # (App. B), so x^{i+1} reduces the violation of the model, not f
+        n_comp = sum(1 for r in log if r.get("sub_violation", 0.0) > COMPROMISE_TOL)
+        return {"n_subproblems": max(len(log) - 1, 0), "n_compromise_subproblems": n_comp,
+                "n_sub_steps": n_sub_steps, "f_best": f_best, "iterations": log}

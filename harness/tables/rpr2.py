@@ -181,6 +181,15 @@ def _e_dq_summary(runs: pd.DataFrame, thesis: pd.DataFrame) -> str:
     return out + (f" Not reproduced: {'; '.join(bad)}." if bad else "")
 
 
+def _compromises(row) -> str:
+    """Dynamic-Q's subproblems ended on LFOPC's compromise, 'k of n' (solvers.dynamic_q)."""
+    try:
+        extra = json.loads(row["extra"]) if isinstance(row.get("extra"), str) else dict(row.get("extra") or {})
+        return f"{int(extra['n_compromise_subproblems'])} of {int(extra['n_subproblems'])}"
+    except (KeyError, TypeError, ValueError):
+        return ""
+
+
 def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
     from manipulators.synthesis.rpr2_suite import exact_optimum
 
@@ -224,7 +233,8 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
                          "dW_p exact": _num(ev.get("dwp_exact"), ".3g"),
                          **(polished(r["x"], ("ours", start) if r["solver"] == "dynamic-q" else None) if applicable
                             else {"exact local min": "", "f nearest enclosing": "", "box drop": ""}),
-                         "d*": _fmt_d(r["x"]) if applicable else "", "status": _status(r)})
+                         "d*": _fmt_d(r["x"]) if applicable else "", "status": _status(r),
+                         "compromise P[i]": _compromises(r) if r["solver"] == "dynamic-q" else ""})
             bad = (r["solver"] == "dynamic-q" and applicable
                    and not (abs(float(r["f"]) - f_th) <= E_REL * f_th and ev.get("dwp_exact", 1.0) <= 0.01))
             flags.append(bool(bad))
@@ -252,6 +262,9 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
                         _e_reading(opt["minima"], pols),
                         "Dynamic-Q stops on (3.10) as printed (at infeasible iterates too, as the thesis's h* > 0 show). "
                         + _e_dq_summary(runs, thesis),
+                        "'compromise P[i]': Dynamic-Q subproblems with no point meeting their approximate constraints "
+                        "within the move limit, where LFOPC returns its least-infeasible compromise and the step reduces "
+                        "the model of h, not f (solvers.dynamic_q, n_compromise_subproblems).",
                         "Ipopt steps to a design with an empty workspace (h = dW_p = area(W_p) = 4.966, constant there) "
                         "and reports a locally infeasible problem.",
                         "How far Dynamic-Q's ends move when a start moves by 1e-6 (O and E): Table 4.7s, suite "

@@ -60,7 +60,7 @@ def _build() -> list[Case]:
             problem = make(sp)
             for k in range(N_PERTURBED + 1):
                 label = sp if k == 0 else f"{sp}~{k}"
-                cases.append(Case(problem.with_start(perturbed_start(sp, k), name=f"{problem.name}~{k}"),
+                cases.append(Case(problem.with_start(perturbed_start(sp, k), name=problem.name + label[len(sp):]),
                                   pid, start=label, options=opts,
                                   meta={"table": "4.7s", "thesis_start": sp, "k": k, "eps": EPS}))
     return cases

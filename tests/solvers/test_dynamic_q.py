@@ -163,3 +163,17 @@ def test_on_cap_returns_the_best_feasible_iterate():
     feas = [r["f"] for r in best.extra["iterations"] if r["max_violation"] < 1e-6]
     assert feas and best.f == pytest.approx(min(feas), rel=1e-12)
     assert best.f <= last.f
+
+
+def test_compromise_subproblems_are_counted():
+    # x1 + x2 = 1 is met by every P[i] within the move limit: no compromise. x1^2 + x2^2 + 1 = 0 has
+    # no solution anywhere, so every P[i] ends on LFOPC's best compromise (App. B).
+    ok = Problem(name="lin-eq", x0=[0.0, 0.0], objective=lambda x: x @ x, gradient=lambda x: 2 * x,
+                 eq=lambda x: np.array([x[0] + x[1] - 1.0]), eq_jacobian=lambda x: np.array([[1.0, 1.0]]), n_eq=1)
+    r = solve(ok, "dynamic-q")
+    assert r.success and r.extra["n_compromise_subproblems"] == 0
+    assert all(it["sub_violation"] <= 1e-6 for it in r.extra["iterations"][:-1])
+    bad = Problem(name="no-root", x0=[1.0, 1.0], objective=lambda x: x[0], gradient=lambda x: np.array([1.0, 0.0]),
+                  eq=lambda x: np.array([x @ x + 1.0]), eq_jacobian=lambda x: 2 * x[None, :], n_eq=1)
+    r = solve(bad, "dynamic-q", max_iter=5)
+    assert r.extra["n_compromise_subproblems"] == r.extra["n_subproblems"] >= 5
