@@ -57,9 +57,14 @@ def _status(row) -> str:
 
 
 def _ours(runs: pd.DataFrame, problem: str, start: str) -> pd.DataFrame:
+    """Our rows of one case, in the suite's solver order (not the order the runs finished in)."""
+    from manipulators.synthesis.rpr2_suite import SOLVERS
+
     if runs is None or runs.empty or "problem" not in runs:
         return pd.DataFrame()
-    return runs[(runs["problem"] == problem) & (runs["start"] == start)]
+    sub = runs[(runs["problem"] == problem) & (runs["start"] == start)]
+    order = {s: i for i, s in enumerate(SOLVERS)}
+    return sub.sort_values("solver", kind="stable", key=lambda col: col.map(lambda s: (order.get(s, len(order)), s)))
 
 
 def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:

@@ -85,3 +85,15 @@ def test_exact_e_minima_and_polish_from_a_narrow_base_design():
     assert pol["box_drop"] > 0.03
     # at a local minimum the box test finds no descent
     assert abs(exact_polish(opt["minima"][1][1])["box_drop"]) < 1e-6
+
+
+def test_table_rows_follow_the_suite_solver_order_not_completion_order():
+    import pandas as pd
+
+    from harness.tables.rpr2 import _ours
+    from manipulators.synthesis.rpr2_suite import SOLVERS
+
+    done = ["scipy-cobyla", "dynamic-q", "my-solver", "sqsd", "ipopt"]  # order the runs finished in
+    runs = pd.DataFrame({"problem": "rpr2-e", "start": "SP1", "solver": done})
+    got = list(_ours(runs, "rpr2-e", "SP1")["solver"])
+    assert got == sorted(done[:2] + done[3:], key=SOLVERS.index) + ["my-solver"]
