@@ -57,8 +57,9 @@ class _NloptBase(AbstractSolver):
     xtol_rel: float = option(1e-10, "stop when every |delta x_i| < xtol_rel |x_i|", "NLopt xtol_rel")
     maxeval: int = option(3000, "cap on objective evaluations (NLopt's own count; the oracle's N^fg is reported)",
                           "NLopt maxeval")
-    maxtime: float = option(30.0, "wall-clock limit in seconds (a guard; NLopt then ends with MAXTIME_REACHED)",
-                            "NLopt maxtime")
+    maxtime: float = option(0.0, "wall-clock limit in seconds, 0 = none (NLopt then ends with MAXTIME_REACHED); "
+                            "any limit makes the end depend on machine load, so the default relies on maxeval and "
+                            "the harness's per-run timeout", "NLopt maxtime; default [OWN] (determinism)")
     constraint_tol: float = option(1e-8, "per-constraint feasibility tolerance given to NLopt", "NLopt mconstraint tol")
     eq_band: float = option(1e-7, "half-width delta of the band -delta <= h(x) <= delta used for equality "
                             "constraints when the algorithm has no native equalities (MMA)", "this module's doc")

@@ -378,7 +378,7 @@ def _options(kind: str) -> dict[str, dict[str, Any]]:
         "scipy-slsqp": {"maxiter": 30},
         "scipy-cobyla": {"rhobeg": s["rho"], "tol": s["eps_x"], "maxfev": 300},
         "ipopt": {"max_iter": 30},
-        "nlopt-mma": {"maxeval": 60, "maxtime": 600.0},
+        "nlopt-mma": {"maxeval": 60},
     }
     return opts
 
