@@ -7,7 +7,6 @@ table (O: f* <= 0.66; E: within 5 % of the thesis).
 
 from __future__ import annotations
 
-import json
 import pathlib
 
 import numpy as np
@@ -26,8 +25,7 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
 
     if runs is None or runs.empty:
         return []
-    runs = runs[runs["solver"] == "dynamic-q"].copy()
-    runs["x"] = runs["x"].apply(lambda v: list(json.loads(v)) if isinstance(v, str) else list(v) if v is not None else [])
+    runs = runs[runs["solver"] == "dynamic-q"]
     th = _thesis_f()
     starts = list(STARTS)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))

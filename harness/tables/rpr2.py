@@ -42,6 +42,14 @@ def _num(v, fmt=".6g") -> str:
     return "" if not math.isfinite(v) else format(v, fmt)
 
 
+def _decoded(runs: pd.DataFrame | None) -> pd.DataFrame:
+    """A copy of the stored runs with ``x`` as lists (the store keeps it as JSON text)."""
+    runs = runs.copy() if runs is not None else pd.DataFrame()
+    if "x" in runs:
+        runs["x"] = runs["x"].apply(lambda v: list(json.loads(v)) if isinstance(v, str) else list(v) if v is not None else [])
+    return runs
+
+
 def _evaluate(kind, x, prescribed="P1"):
     from manipulators.synthesis.rpr2_suite import evaluate
 
@@ -313,9 +321,7 @@ def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
 
 def tables(runs: pd.DataFrame) -> list[Table]:
     """Tables 4.3-4.6 (O synthesis per start), 4.7 (E synthesis), 4.9 (P synthesis)."""
-    runs = runs.copy() if runs is not None else pd.DataFrame()
-    if "x" in runs:
-        runs["x"] = runs["x"].apply(lambda v: list(json.loads(v)) if isinstance(v, str) else list(v) if v is not None else [])
+    runs = _decoded(runs)
     o = thesis_table("table_4_3_to_4_6_O_synthesis")
     out = [_o_table(runs, sp, o) for sp in O_TABLES]
     out.append(_e_table(runs, thesis_table("table_4_7_E_synthesis")))

@@ -7,7 +7,6 @@ thesis's value and the tolerance of Tables 4.3-4.7.  Diagnostic only: nothing is
 
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
@@ -16,7 +15,7 @@ import pandas as pd
 from harness.reference import thesis_table
 
 from ._base import Table
-from .rpr2 import E_REL, O_LIMIT, _evaluate
+from .rpr2 import E_REL, O_LIMIT, _decoded, _evaluate, _num, _span
 
 __all__ = ["tables"]
 
@@ -43,20 +42,12 @@ def _within(kind: str, f: float, f_th: float, dwp_exact: float) -> bool:
     return abs(f - f_th) <= E_REL * f_th and dwp_exact <= 0.01
 
 
-def _rng(vals, fmt) -> str:
-    vals = [v for v in vals if math.isfinite(v)]
-    if not vals:
-        return ""
-    return f"{format(min(vals), fmt)} - {format(max(vals), fmt)}"
-
-
 def tables(runs: pd.DataFrame) -> list[Table]:
     from manipulators.synthesis.rpr2_spread_suite import EPS, parse_start
 
-    runs = runs.copy() if runs is not None else pd.DataFrame()
+    runs = _decoded(runs)
     rows = []
     if not runs.empty and "x" in runs:
-        runs["x"] = runs["x"].apply(lambda v: list(json.loads(v)) if isinstance(v, str) else list(v) if v is not None else [])
         runs = runs[runs["solver"] == "dynamic-q"]
         runs["thesis_start"] = [parse_start(s)[0] for s in runs["start"]]
         th = _thesis_f()
@@ -77,15 +68,15 @@ def tables(runs: pd.DataFrame) -> list[Table]:
             st = g["status"].astype(str).value_counts()
             rows.append({
                 "synthesis": label, "start": sp, "runs": len(g),
-                "thesis f*": f_th, "f* from the start itself": _fmt(f_nom),
-                "f* min": _fmt(finite.min() if finite.size else math.nan),
-                "f* median": _fmt(float(np.median(finite)) if finite.size else math.nan),
-                "f* max": _fmt(finite.max() if finite.size else math.nan),
+                "thesis f*": f_th, "f* from the start itself": _num(f_nom, ".4f"),
+                "f* min": _num(finite.min() if finite.size else math.nan, ".4f"),
+                "f* median": _num(np.median(finite) if finite.size else math.nan, ".4f"),
+                "f* max": _num(finite.max() if finite.size else math.nan, ".4f"),
                 "thesis f* vs ends": _where(f_th, finite),
                 "within tolerance": f"{sum(ok)} of {len(g)}",
-                "base x_B - x_A": _rng(bases, ".2f"),
-                "dW_p exact": _rng(dwp, ".3f"),
-                "N^fg": _rng([float(v) for v in g["nfg"]], ".0f"),
+                "base x_B - x_A": _span(bases, ".2f"),
+                "dW_p exact": _span(dwp, ".3f") if kind == "e" else "",
+                "N^fg": _span([float(v) for v in g["nfg"]], ".0f"),
                 "status": ", ".join(f"{k} {v}" for k, v in st.items()),
             })
     frame = pd.DataFrame(rows)
@@ -113,7 +104,3 @@ def _where(f_th: float, ends: np.ndarray) -> str:
     if f_th > ends.max():
         return f"{f_th - ends.max():.4g} above all"
     return "inside"
-
-
-def _fmt(v) -> str:
-    return "" if v is None or not math.isfinite(float(v)) else f"{float(v):.4f}"
