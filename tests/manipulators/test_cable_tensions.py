@@ -3,8 +3,6 @@ independent LP, l1 norms of Algorithm 6.1 / basic solutions against LP, l2 again
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -88,7 +86,6 @@ def test_random_robots_poses_loads():
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(not os.environ.get("HAYBENCH_SLOW"), reason="about 2 minutes; set HAYBENCH_SLOW=1")
 def test_random_robots_10000():
     rng = np.random.default_rng(7)
     n_feas = 0
