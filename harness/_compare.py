@@ -15,6 +15,7 @@ from __future__ import annotations
 import dataclasses
 import os
 import pathlib
+import textwrap
 
 import numpy as np
 import pandas as pd
@@ -22,6 +23,7 @@ import pandas as pd
 from ._api import NoResults, load_results
 from ._plan import HarnessArgumentError
 from ._store import Store
+from .tables._base import count
 
 __all__ = ["compare_dirs", "compare_runs", "format_changes", "save_baseline", "load_counts", "Comparison"]
 
@@ -65,14 +67,20 @@ def save_baseline(suite: str, out: str | os.PathLike[str] = "results",
     return path
 
 
+def _same(a: object, b: object) -> bool:
+    """Equal, where two missing values (runs without counts) are equal too."""
+    na, nb = bool(pd.isna(a)), bool(pd.isna(b))  # type: ignore[call-overload]
+    return na and nb or (not na and not nb and a == b)
+
+
 def _verdict(r: pd.Series, nfg_tol: float, rel_error_factor: float | None) -> str:
     so, sn = bool(r.success_old), bool(r.success_new)
     if so and not sn:
         return f"REGRESSION: solved -> unsolved ({r.status_new})"
     if sn and not so:
         return "improved: unsolved -> solved"
-    if so and sn:
-        no, nn = float(r.nfg_old), float(r.nfg_new)
+    no, nn = count(r.nfg_old), count(r.nfg_new)
+    if so and sn and no is not None and nn is not None:
         if nn > no * (1 + nfg_tol):
             return f"REGRESSION: N^fg +{(nn - no) / max(no, 1):.0%}"
         if rel_error_factor is not None:
@@ -81,7 +89,7 @@ def _verdict(r: pd.Series, nfg_tol: float, rel_error_factor: float | None) -> st
                 return f"REGRESSION: E^r {eo:.2e} -> {en:.2e}"
         if nn < no * (1 - nfg_tol):
             return f"improved: N^fg {(nn - no) / max(no, 1):.0%}"
-    if r.nfg_old != r.nfg_new or r.status_old != r.status_new:
+    if not _same(r.nfg_old, r.nfg_new) or r.status_old != r.status_new:
         return "changed"
     return "same"
 
@@ -116,6 +124,10 @@ def compare_runs(old: pd.DataFrame, new: pd.DataFrame, nfg_tol: float = 0.10,
 def compare_dirs(old: str | os.PathLike[str], new: str | os.PathLike[str], suite: str | None = None,
                  nfg_tol: float = 0.10, rel_error_factor: float | None = None) -> Comparison:
     """Compare every suite present in both directories (or only ``suite``)."""
+    if not (np.isfinite(nfg_tol) and nfg_tol >= 0):
+        raise HarnessArgumentError(f"--nfg-tol must be a finite number >= 0 (a relative N^fg increase), got {nfg_tol}")
+    if rel_error_factor is not None and not (np.isfinite(rel_error_factor) and rel_error_factor >= 1):
+        raise HarnessArgumentError(f"--rel-error-factor must be a finite number >= 1, got {rel_error_factor}")
     from ._report import suites_under
 
     def names(d: str | os.PathLike[str]) -> set[str]:
@@ -137,6 +149,25 @@ def compare_dirs(old: str | os.PathLike[str], new: str | os.PathLike[str], suite
     return compare_runs(olds, news, nfg_tol, rel_error_factor)
 
 
+def _num_text(v: object) -> str:
+    c = count(v)
+    return "—" if c is None else str(c)
+
+
+def _wrapped_keys(label: str, df: pd.DataFrame, limit: int = 12) -> list[str]:
+    """A short, wrapped account of unmatched runs: counts per suite and solver, then a few keys."""
+    if not len(df):
+        return []
+    lines = [f"\n{label}: {len(df)} runs"]
+    per = df.groupby(["suite", "solver"]).size()
+    lines += textwrap.wrap(", ".join(f"{s}/{v}: {k}" for (s, v), k in per.items()), width=100,
+                           initial_indent="  by suite/solver: ", subsequent_indent="    ")
+    shown = [f"{r.suite}:{r.case_id}:{r.solver}" for r in df.head(limit).itertuples()]
+    more = f" ... and {len(df) - limit} more (--all lists every run)" if len(df) > limit else ""
+    lines += textwrap.wrap(", ".join(shown) + more, width=100, initial_indent="  ", subsequent_indent="  ")
+    return lines
+
+
 def format_changes(c: Comparison, show_all: bool = False) -> str:
     rows = c.changes if show_all else c.changes[c.changes["verdict"] != "same"]
     lines = [f"{len(c.changes)} runs compared, {int((c.changes['verdict'] != 'same').sum())} changed, "
@@ -145,9 +176,13 @@ def format_changes(c: Comparison, show_all: bool = False) -> str:
         lines += ["", "| suite | case | solver | N^fg old | N^fg new | solved old | solved new | E^r old | E^r new | verdict |",
                   "|---|---|---|---|---|---|---|---|---|---|"]
         for r in rows.itertuples():
-            lines.append(f"| {r.suite} | {r.case_id} | {r.solver} | {r.nfg_old} | {r.nfg_new} | {r.success_old} | "
-                         f"{r.success_new} | {float(r.rel_error_old):.2e} | {float(r.rel_error_new):.2e} | {r.verdict} |")
-    for label, df in (("only in old", c.only_old), ("only in new", c.only_new)):
-        if len(df):
-            lines.append(f"\n{label}: " + ", ".join(f"{r.suite}:{r.case_id}:{r.solver}" for r in df.itertuples()))
+            lines.append(f"| {r.suite} | {r.case_id} | {r.solver} | {_num_text(r.nfg_old)} | {_num_text(r.nfg_new)} | "
+                         f"{r.success_old} | {r.success_new} | {float(r.rel_error_old):.2e} | "
+                         f"{float(r.rel_error_new):.2e} | {r.verdict} |")
+    if show_all:
+        for label, df in (("only in old", c.only_old), ("only in new", c.only_new)):
+            if len(df):
+                lines.append(f"\n{label}: " + ", ".join(f"{r.suite}:{r.case_id}:{r.solver}" for r in df.itertuples()))
+    else:
+        lines += _wrapped_keys("only in old", c.only_old) + _wrapped_keys("only in new", c.only_new)
     return "\n".join(lines)

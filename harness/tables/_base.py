@@ -11,7 +11,7 @@ import dataclasses
 
 import pandas as pd
 
-__all__ = ["Table"]
+__all__ = ["Table", "count", "count_cell"]
 
 
 @dataclasses.dataclass
@@ -31,3 +31,24 @@ class Table:
     frame: pd.DataFrame
     flags: pd.DataFrame | None = None
     notes: list[str] = dataclasses.field(default_factory=list)
+
+
+def count(value: object) -> int | None:
+    """A stored count as an int, or None when the run has none (error, time-out, not applicable).
+
+    Rows without counts are failures of that solver on that case: tables show them as such
+    and never call ``int()`` on a missing value.
+    """
+    if value is None or value is pd.NA:
+        return None
+    try:
+        v = float(value)  # type: ignore[arg-type]  # numbers, numpy scalars and numeric strings
+    except (TypeError, ValueError):
+        return None
+    return int(v) if v == v and abs(v) != float("inf") else None
+
+
+def count_cell(value: object) -> int | str:
+    """A count for a table cell: the int, or "" when the run has none (its status says why)."""
+    c = count(value)
+    return "" if c is None else c

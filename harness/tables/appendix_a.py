@@ -20,7 +20,7 @@ import pandas as pd
 
 from harness.reference import thesis_table
 
-from ._base import Table
+from ._base import Table, count
 
 __all__ = ["tables", "THESIS_STEM", "within_tolerance"]
 
@@ -72,11 +72,14 @@ def _case_id(problem_label: str, n: str, variant: str = "") -> str:
 def _count_cell(run: pd.Series | None) -> str:
     if run is None:
         return "—"
+    nfg = count(run["nfg"])
+    if nfg is None:  # error, time-out: no counts, the status is the cell
+        return str(run["status"])
     if run["status"] == "converged":
-        return str(int(run["nfg"]))
+        return str(nfg)
     if run["status"] == "max_iter":
-        return f"> {int(run['nfg'])}"
-    return f"{run['status']} {int(run['nfg'])}"
+        return f"> {nfg}"
+    return f"{run['status']} {nfg}"
 
 
 def _err_value(run: pd.Series | None, kind: str) -> float:
@@ -102,7 +105,8 @@ def within_tolerance(method: str, problem: str, n: int, th: pd.Series, run: pd.S
     num = int(problem.split("(")[0])
     tight = method == "SQSD" and (num <= 11 or (num == 12 and n <= 200))
     tol = 0.15 if tight else 0.5
-    ok_n = converged and abs(int(run["nfg"]) - int(th["nfg"])) <= tol * int(th["nfg"])
+    nfg = count(run["nfg"])
+    ok_n = converged and nfg is not None and abs(nfg - int(th["nfg"])) <= tol * int(th["nfg"])
     ours, theirs = _err_value(run, th["er_kind"]), _num(th["er"])
     ok_e = bool(np.isfinite(ours) and ours <= max(10 * theirs, 1e-8))
     return {"nfg": bool(ok_n), "err": ok_e}
@@ -119,7 +123,7 @@ def _method_cells(method: str, th: pd.Series, run: pd.Series | None) -> tuple[di
     }
     flags = {f"{method} N^fg": not v["nfg"], f"{method} N^fg thesis": False}
     if method != "SQSD":
-        cells[f"{method} N^it"] = "—" if run is None else str(int(run["nit"]))
+        cells[f"{method} N^it"] = "—" if run is None or count(run["nit"]) is None else str(count(run["nit"]))
         cells[f"{method} N^it thesis"] = th["nit"]
         flags[f"{method} N^it"] = flags[f"{method} N^it thesis"] = False
     cells[f"{method} E^r/I^inf"] = (_fmt_err(_err_value(run, th["er_kind"])) + (" (I)" if er_label == "I^inf" else ""))

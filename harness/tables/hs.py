@@ -33,7 +33,7 @@ import pandas as pd
 
 from harness.reference import thesis_table
 
-from ._base import Table
+from ._base import Table, count
 
 __all__ = ["tables", "classify", "relative_error", "SOLVED_ER", "FEAS_TOL", "THESIS_STEM"]
 
@@ -182,15 +182,15 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                 flag.update({f"{s} N^fg": False, f"{s} f*": False, f"{s} E^r": False})
                 continue
             mark, er = classify(_num(r["f"]), f_act, _num(r["max_violation"]), str(r["status"]), minima)
-            nfg = int(r["nfg"])
+            nfg = count(r["nfg"])  # None: error or time-out, a failure without counts
             per_solver[s].append({"pid": pid, "nfg": nfg, "mark": mark})
-            row[f"{s} N^fg"] = f"{nfg}{mark}"
+            row[f"{s} N^fg"] = f"{r['status'] if nfg is None else nfg}{mark}"
             row[f"{s} f*"] = _fmt(_num(r["f"]), ".6g")
             row[f"{s} E^r"] = _fmt(er, ".2e")
             differs = False
             ref_m = COMPARE.get(s)
             t = th.get(ref_m) if ref_m else None
-            if t is not None and math.isfinite(t["nfg"]) and t["nfg"] > 0:
+            if nfg is not None and t is not None and math.isfinite(t["nfg"]) and t["nfg"] > 0:
                 ratio = nfg / t["nfg"]
                 if ratio > RATIO_NOTE or ratio < 1 / RATIO_NOTE:
                     differs = True
@@ -229,7 +229,7 @@ def tables(runs: pd.DataFrame) -> list[Table]:
 
 def _stats(items: list[dict[str, Any]]) -> dict[str, Any]:
     nfg_all = [i["nfg"] for i in items if i["nfg"] is not None and math.isfinite(i["nfg"])]
-    nfg_ok = [i["nfg"] for i in items if i["mark"] == "" and math.isfinite(i["nfg"])]
+    nfg_ok = [i["nfg"] for i in items if i["mark"] == "" and i["nfg"] is not None and math.isfinite(i["nfg"])]
     return {
         "problems": len(items),
         "solved": sum(i["mark"] == "" for i in items),

@@ -16,7 +16,7 @@ import pandas as pd
 
 from harness.reference import thesis_table
 
-from ._base import Table
+from ._base import Table, count_cell
 
 __all__ = ["tables"]
 
@@ -89,7 +89,7 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
         applicable = r["status"] != "not_applicable"
         ev = _evaluate("o", r["x"]) if applicable and len(r["x"]) == 5 else {}
         f = r["f"]
-        rows.append({"source": "ours", "solver": r["solver"], "N^g": r["ng"], "N^fg": r["nfg"],
+        rows.append({"source": "ours", "solver": r["solver"], "N^g": count_cell(r["ng"]), "N^fg": count_cell(r["nfg"]),
                      "f* (disc.)": _num(f), "f ours at d* (disc.)": _num(ev.get("f")),
                      "f exact at d*": _num(ev.get("f_exact")), "d*": _fmt_d(r["x"]) if applicable else "",
                      "status": _status(r)})
@@ -241,7 +241,7 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
         for _, r in _ours(runs, "rpr2-e", start).iterrows():
             applicable = r["status"] != "not_applicable" and len(r["x"]) == 5
             ev = _evaluate("e", r["x"]) if applicable else {}
-            rows.append({"start": start, "source": "ours", "solver": r["solver"], "N^g": r["ng"], "N^fg": r["nfg"],
+            rows.append({"start": start, "source": "ours", "solver": r["solver"], "N^g": count_cell(r["ng"]), "N^fg": count_cell(r["nfg"]),
                          "f*": _num(r["f"]), "h*": _num(ev.get("h"), ".2g"), "f exact": _num(ev.get("dwc_exact")),
                          "dW_p exact": _num(ev.get("dwp_exact"), ".3g"),
                          **(polished(r["x"], ("ours", start) if r["solver"] == "dynamic-q" else None) if applicable
@@ -300,7 +300,7 @@ def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
             applicable = r["status"] != "not_applicable"
             ev = _evaluate("p", r["x"], P) if applicable and len(r["x"]) == 3 else {}
             fstar = -float(r["f"]) if r["f"] is not None and np.isfinite(r["f"]) else float("nan")
-            rows.append({"P": P, "source": "ours", "solver": r["solver"], "N^g": r["ng"], "N^fg": r["nfg"],
+            rows.append({"P": P, "source": "ours", "solver": r["solver"], "N^g": count_cell(r["ng"]), "N^fg": count_cell(r["nfg"]),
                          "f(d0)": _num(f0, ".3f"), "f*": _num(fstar, ".4f"), "g*": _num(ev.get("g"), ".2g"),
                          "f exact": _num(ev.get("kinv_exact"), ".4f"), "dW_p exact": _num(ev.get("dwp_exact"), ".2g"),
                          "enclosed": ev.get("enclosed", ""), "d*": _fmt_d(r["x"]) if applicable else "",

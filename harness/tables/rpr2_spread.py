@@ -14,7 +14,7 @@ import pandas as pd
 
 from harness.reference import thesis_table
 
-from ._base import Table
+from ._base import Table, count
 from .rpr2 import E_REL, O_LIMIT, _decoded, _evaluate, _num, _span
 
 __all__ = ["tables"]
@@ -76,7 +76,7 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                 "within tolerance": f"{sum(ok)} of {len(g)}",
                 "base x_B - x_A": _span(bases, ".2f"),
                 "dW_p exact": _span(dwp, ".3f") if kind == "e" else "",
-                "N^fg": _span([float(v) for v in g["nfg"]], ".0f"),
+                "N^fg": _span([float(c) for c in map(count, g["nfg"]) if c is not None], ".0f"),
                 "status": ", ".join(f"{k} {v}" for k, v in st.items()),
             })
     frame = pd.DataFrame(rows)

@@ -22,7 +22,7 @@ import time
 import numpy as np
 import pandas as pd
 
-from ._base import Table
+from ._base import Table, count_cell
 
 __all__ = ["tables", "dextrous_table", "synthesis_table", "DEXTROUS_RANGES"]
 
@@ -169,7 +169,7 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
             enclosed = bool(ev.get("enclosed", False))
             win, miss = _window(kind, x if ok else None, pname)
             rows.append({
-                "P": pname, "solver": r["solver"], "status": r["status"], "N^fg": int(r["nfg"]), "N^f": int(r["nf"]),
+                "P": pname, "solver": r["solver"], "status": r["status"], "N^fg": count_cell(r["nfg"]), "N^f": count_cell(r["nf"]),
                 "f(d0)": round(f0, 4), "f*": round(fstar, 4), "g*": float(f"{ev.get('g', float('nan')):.2g}"),
                 "d*": "[" + ", ".join(f"{v:.4g}" for v in x) + "]" if ok else "",
                 "exact dW_p/W_p": float(f"{ev.get('ratio', float('nan')):.2g}"),

@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._base import Table
+from ._base import Table, count_cell
 
 __all__ = ["tables", "published_table", "BEST_TOL", "PUBLISHED_TOL"]
 
@@ -71,7 +71,7 @@ def _our_rows(runs: pd.DataFrame, n: int, load: str):
         except KeyError:
             d0, a0 = [], np.nan
         ok = x.size == n and np.all(np.isfinite(x))
-        rows.append({"solver": r.solver, "run": r.start, "N^g": int(r.ng), "N^fg": int(r.nfg),
+        rows.append({"solver": r.solver, "run": r.start, "N^g": count_cell(r.ng), "N^fg": count_cell(r.nfg),
                      "d0": _vec(d0), "A_d0": a0, "d*": _vec(x) if ok else "",
                      "A_d*": round(-float(r.f), 4) if np.isfinite(r.f) else np.nan,
                      "min sep": round(float(np.min(separations(x))), 4) if ok else np.nan,
@@ -79,6 +79,12 @@ def _our_rows(runs: pd.DataFrame, n: int, load: str):
                      # flagged on the unrounded value (feasibility tolerance 1e-6 rad)
                      "_violates": bool(ok and np.min(separations(x)) < BETA_MIN - 1e-6)})
     return rows
+
+
+def _mean_count(cells: list) -> float:
+    """Mean of the runs' N^fg, over the runs that have counts (NaN when none has)."""
+    vals = [c for c in cells if not isinstance(c, str)]
+    return round(float(np.mean(vals)), 1) if vals else float("nan")
 
 
 def tables(runs: pd.DataFrame) -> list[Table]:
@@ -119,7 +125,7 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                               "A_d* best (thesis)": thesis_best,
                               "by": b["solver"],
                               "ratio": round(b["A_d*"] / thesis_best, 4),
-                              "mean N^fg": round(float(np.mean([r["N^fg"] for r in mine])), 1)})
+                              "mean N^fg": _mean_count([r["N^fg"] for r in mine])})
             best_flags.append({k: (k == "A_d* best (ours)" and short) for k in best_rows[-1]})
     if best_rows:
         out.append(Table("table_6_best", "Best of five starts per load case and solver vs the thesis's best",
