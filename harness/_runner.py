@@ -20,7 +20,7 @@ from . import _manifest
 from ._plan import HarnessArgumentError, RunSpec, plan_runs
 from ._pool import LocalPool
 from ._progress import Progress
-from ._store import Store
+from ._store import Store, retry_keys
 from ._suites import SuiteRef, import_modules, ref_for
 
 __all__ = ["run_suite", "RunSummary", "resolve_suite"]
@@ -41,13 +41,15 @@ class RunSummary:
     not_applicable: int
     store: pathlib.Path
     elapsed: float
+    retried: int = 0  # stored failures run again under the retry policy
 
     def __str__(self) -> str:
         if self.executed == 0:
             return (f"{self.suite}: all {self.planned} runs already stored in {self.store} (resume) - "
                     f"no solver work done; use --fresh to run them again")
+        again = f", {self.retried} of them stored failures run again" if self.retried else ""
         return (f"{self.suite}: {self.executed} runs executed ({self.failed} error/timeout, "
-                f"{self.not_applicable} not applicable), {self.skipped} already stored, "
+                f"{self.not_applicable} not applicable{again}), {self.skipped} already stored, "
                 f"{self.elapsed:.1f} s -> {self.store}")
 
 
@@ -96,6 +98,7 @@ def run_suite(
     jobs: int | None = None,
     timeout: float = 600.0,
     fresh: bool = False,
+    retry_failed: bool = False,
     executor: str = "local",
     scheduler: str | None = None,
     modules: Sequence[str] = (),
@@ -112,8 +115,11 @@ def run_suite(
     problems : problem ids (or case ids) to run; default all.
     out : results directory; rows go to ``out/<suite>/runs.parquet``.
     jobs : worker processes (local executor); default all cores.
-    timeout : per-run wall-clock limit in seconds (<= 0: none).
+    timeout : per-run wall-clock limit in seconds (0 or inf: none; negative or NaN is an error).
     fresh : run again even the runs already stored under the same key.
+    retry_failed : run again every stored error and time-out row. Without it, stored failures
+        of the infrastructure (worker killed, Dask worker lost, out of memory) are run again,
+        and time-outs when ``timeout`` is larger than the limit they ran under.
     executor, scheduler : ``"local"`` or ``"dask"`` with a scheduler address.
     modules : modules (names or .py paths) workers import first, e.g. to register solvers.
     progress : stream for the progress display (None: quiet).
@@ -127,6 +133,8 @@ def run_suite(
     solver_specs = list(solvers) if solvers else list(s.solvers)
     if not solver_specs:
         raise HarnessArgumentError(f"suite {ref.name} names no default solvers; give --solvers")
+    if not (timeout >= 0):  # also catches NaN
+        raise HarnessArgumentError(f"--timeout must be a number of seconds >= 0 (0 or inf: no limit), got {timeout}")
     if jobs is not None and jobs < 1:
         raise HarnessArgumentError(f"--jobs must be >= 1, got {jobs}")
     if executor == "dask" and not scheduler:
@@ -134,8 +142,11 @@ def run_suite(
     specs = plan_runs(ref, s, solver_specs, list(problems) if problems else None, timeout, tuple(modules))
     store = Store(out, ref.name)
     stored = set() if fresh else store.stored_keys()
-    todo = [sp for sp in specs if sp.run_key not in stored]
-    summary = RunSummary(ref.name, len(specs), len(specs) - len(todo), 0, 0, 0, store.parquet, 0.0)
+    again = set() if fresh or not stored else retry_keys(store.load(), timeout, retry_failed) & stored
+    todo = [sp for sp in specs if sp.run_key not in stored or sp.run_key in again]
+    by_key = {sp.run_key: sp for sp in todo}
+    summary = RunSummary(ref.name, len(specs), len(specs) - len(todo), 0, 0, 0, store.parquet, 0.0,
+                         retried=sum(sp.run_key in again for sp in todo))
     if todo:
         bar = Progress(ref.name, len(todo), progress)
         last = time.perf_counter()
@@ -144,6 +155,8 @@ def run_suite(
                 if row is None:  # heartbeat: nothing finished lately
                     bar.tick()
                     continue
+                sp = by_key.get(str(row.get("run_key")))
+                row["timeout_s"] = sp.timeout if sp is not None else float("nan")
                 store.write_run(row)
                 summary.executed += 1
                 summary.failed += row["status"] in ("error", "timeout")

@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import contextlib
 import json
+import math
 import os
+import re
 import pathlib
 import tempfile
 import time
@@ -26,11 +28,59 @@ import pandas as pd
 from ._record import ROW_COLUMNS
 from ._worker import COUNT_COLUMNS, EXTRA_COLUMNS
 
-__all__ = ["Store", "COLUMNS", "IDENTITY", "normalize"]
+__all__ = ["Store", "COLUMNS", "IDENTITY", "normalize", "failure_kind", "retry_keys"]
 
-COLUMNS = ROW_COLUMNS + EXTRA_COLUMNS
+#: written by the runner beside the worker's row: the run's wall-clock limit (s; 0 = none).
+#: Store metadata, not part of a run's numbers, so not part of its code version.
+STORE_COLUMNS = ["timeout_s"]
+COLUMNS = ROW_COLUMNS + EXTRA_COLUMNS + STORE_COLUMNS
 IDENTITY = ["case_id", "solver", "overrides"]
-FLOAT_COLUMNS = ["f", "f_ref", "rel_error", "inf_error", "max_violation", "wall_time_s", "time_in_evals_s"]
+FLOAT_COLUMNS = ["f", "f_ref", "rel_error", "inf_error", "max_violation", "wall_time_s", "time_in_evals_s",
+                 "timeout_s"]
+#: messages of runs that failed for reasons outside the solver: the worker was killed by a signal
+#: (e.g. the kernel's OOM killer), lost with its Dask worker, or ran out of memory
+INFRASTRUCTURE = ("worker process died", "dask task failed", "MemoryError")
+
+
+def failure_kind(status: str, message: str) -> str:
+    """"" for a run that produced a result, else "timeout", "infrastructure" or "solver".
+
+    Solver errors (an exception in the solver or the problem) are results and stay stored;
+    infrastructure failures say nothing about the solver and are re-run (docs/harness.md).
+    """
+    if status == "timeout":
+        return "timeout"
+    if status != "error":
+        return ""
+    return "infrastructure" if any(m in message for m in INFRASTRUCTURE) else "solver"
+
+
+def _stored_limit(row: pd.Series) -> float:
+    """The wall-clock limit a stored time-out ran under (older rows: read from the message)."""
+    v = row.get("timeout_s")
+    if v is not None and v == v:
+        return float(v)
+    m = re.search(r"limit of ([0-9.eE+-]+) s", str(row.get("message", "")))
+    return float(m.group(1)) if m else 0.0
+
+
+def retry_keys(runs: pd.DataFrame, timeout: float, retry_failed: bool = False) -> set[str]:
+    """Run keys of stored failures to run again under the retry policy (docs/harness.md):
+
+    * infrastructure failures (worker killed, Dask worker lost, out of memory): always;
+    * time-outs: when the new limit is larger than the stored one (0 = no limit);
+    * every error and time-out row with ``retry_failed``.
+    Solver errors otherwise stay stored as results.
+    """
+    keys: set[str] = set()
+    new_limit = math.inf if timeout <= 0 else timeout
+    for _, r in runs[runs["status"].isin(["error", "timeout"])].iterrows():
+        kind = failure_kind(str(r["status"]), str(r["message"]))
+        old = _stored_limit(r)
+        if retry_failed or kind == "infrastructure" or (
+                kind == "timeout" and new_limit > (math.inf if old <= 0 else old)):
+            keys.add(str(r["run_key"]))
+    return keys
 
 
 def normalize(df: pd.DataFrame) -> pd.DataFrame:

@@ -57,8 +57,13 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--problems", help="comma-separated problem ids or case ids (default: all)")
     r.add_argument("--out", default="results", help="results directory (default: results/)")
     r.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
-    r.add_argument("--timeout", type=float, default=600.0, help="per-run wall-clock limit, s (default 600)")
+    r.add_argument("--timeout", type=float, default=600.0,
+                   help="per-run wall-clock limit, s (default 600; 0 or inf: none). Stored time-outs with a smaller "
+                        "limit are run again")
     r.add_argument("--fresh", action="store_true", help="re-run runs already stored under the same key")
+    r.add_argument("--retry-failed", action="store_true",
+                   help="re-run every stored error and time-out row (failures of the infrastructure - a killed "
+                        "worker, a lost Dask worker, out of memory - are re-run without it)")
     r.add_argument("--executor", choices=["local", "dask"], default="local")
     r.add_argument("--scheduler", help="Dask scheduler address for --executor dask (tcp://host:8786)")
     r.add_argument("--solver-module", action="append", default=[], dest="modules",
@@ -105,7 +110,8 @@ def _cmd_run(a: argparse.Namespace) -> int:
     from ._runner import run_suite
 
     summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
-                        out=a.out, jobs=a.jobs, timeout=a.timeout, fresh=a.fresh, executor=a.executor,
+                        out=a.out, jobs=a.jobs, timeout=a.timeout, fresh=a.fresh, retry_failed=a.retry_failed,
+                        executor=a.executor,
                         scheduler=a.scheduler, modules=a.modules, progress=None if a.quiet else sys.stderr,
                         argv=sys.argv)
     print(summary)
