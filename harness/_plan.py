@@ -122,6 +122,12 @@ def plan_runs(ref: SuiteRef, suite: Suite, solver_specs: list[str], problems: li
             raise HarnessArgumentError(str(exc)) from None
         except Exception as exc:  # noqa: BLE001 - a known solver that fails to import: error rows
             unavailable[name] = f"solver {name} unavailable: {type(exc).__name__}: {exc}"
+    for (name, over), spec_str in zip(parsed, solver_specs):  # the user's options: checked before any work
+        if over and name in classes:
+            try:
+                make_solver(name, **over)
+            except (ValueError, TypeError) as exc:
+                raise HarnessArgumentError(f"invalid options in {spec_str!r}: {exc}") from None
     cases = select_cases(suite, problems)
     suite_module = None if ref.file else SUITES.get(ref.name)
     files = (ref.file,) if ref.file else ()

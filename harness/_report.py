@@ -2,8 +2,9 @@
 
 ``DIR/report/index.html`` shows, per suite: the tables of its plug-in (ours beside the
 thesis's, differing cells marked), a per-solver summary, the stored figures (linked by
-relative path, so the directory can be copied or served as is) and the environment of
-the latest run.  Nothing is re-run: everything comes from the stored results.
+relative path, so the directory can be copied or served as is; inlined with ``--embed``,
+so the page is one self-contained file) and the environment of the latest run.  Nothing
+is re-run: everything comes from the stored results.
 """
 
 from __future__ import annotations
@@ -12,10 +13,13 @@ import html
 import json
 import os
 import pathlib
+import time
+from typing import TextIO
 
 import pandas as pd
 
 from ._api import load_results
+from ._plan import HarnessArgumentError
 from ._profiles import solver_labels
 from ._store import Store
 
@@ -56,10 +60,9 @@ def _frame_html(df: pd.DataFrame) -> str:
     return df.to_html(na_rep="—", float_format=lambda v: f"{v:.6g}", border=0)
 
 
-def _suite_section(out: pathlib.Path, suite: str, report_dir: pathlib.Path) -> str:
+def _suite_section(out: pathlib.Path, suite: str, report_dir: pathlib.Path, runs: pd.DataFrame) -> str:
     from .tables._render import NoTablePlugin, build_tables, to_html
 
-    runs = load_results(suite, out)
     manifest = out / suite / "manifest.json"
     latest = json.loads(manifest.read_text()).get("latest", {}) if manifest.exists() else {}
     ref = None
@@ -109,22 +112,67 @@ def _solver_catalogue(names: set[str]) -> str:
     return _frame_html(pd.DataFrame(rows).set_index("solver")) if rows else ""
 
 
-def write_report(out: str | os.PathLike[str] = "results") -> pathlib.Path:
-    """Write ``out/report/index.html`` from the stored results; returns its path."""
+def _inline_images(page: str, report_dir: pathlib.Path) -> str:
+    """Replace every ``src``/``href`` pointing at a PNG by a data URI: one self-contained file."""
+    import base64
+    import re
+
+    cache: dict[str, str] = {}
+
+    def data_uri(m: re.Match[str]) -> str:
+        rel = html.unescape(m.group(2))
+        if rel not in cache:
+            path = (report_dir / rel).resolve()
+            try:
+                cache[rel] = "data:image/png;base64," + base64.b64encode(path.read_bytes()).decode("ascii")
+            except OSError:
+                cache[rel] = rel
+        return f'{m.group(1)}="{cache[rel]}"'
+
+    page = re.sub(r'<a href="[^"]+\.png">(<img [^>]*>)</a>', r"\1", page)  # no links to inlined figures
+    return re.sub(r'(src)="([^"]+\.png)"', data_uri, page)
+
+
+def write_report(out: str | os.PathLike[str] = "results", embed: bool = False,
+                 progress: TextIO | None = None) -> pathlib.Path:
+    """Write ``out/report/index.html`` from the stored results; returns its path.
+
+    embed : inline the figures, so the page is one self-contained file (to mail or attach to
+        a CI run); otherwise it links to the PNG files under ``out``.
+    progress : stream for one line per suite (None: quiet).
+    A suite whose store cannot be read gets a section saying why; the others are unaffected.
+    """
     out = pathlib.Path(out)
+    if not out.is_dir():
+        raise HarnessArgumentError(f"results directory {out} does not exist; run a suite first "
+                                   f"(python -m harness run --suite hs --out {out})")
     report_dir = out / "report"
     report_dir.mkdir(parents=True, exist_ok=True)
     suites = suites_under(out)
     sections, solver_ids = [], set()
-    for s in suites:
-        sections.append(_suite_section(out, s, report_dir))
-        solver_ids |= set(load_results(s, out)["solver"])
+    for i, s in enumerate(suites, 1):
+        t0 = time.perf_counter()
+        if progress is not None:
+            print(f"report: [{i}/{len(suites)}] {s} ...", file=progress, flush=True)
+        try:
+            runs = load_results(s, out)
+        except Exception as exc:  # noqa: BLE001 - a broken store must not hide the other suites
+            sections.append(f'<h2 id="{html.escape(s)}">{html.escape(s)}</h2>'
+                            f'<p class="err">results not readable: {html.escape(str(exc))}</p>')
+            continue
+        sections.append(_suite_section(out, s, report_dir, runs))
+        solver_ids |= set(runs["solver"])
+        if progress is not None:
+            print(f"report: [{i}/{len(suites)}] {s}: {len(runs)} runs, {time.perf_counter() - t0:.1f} s",
+                  file=progress, flush=True)
     nav = " ".join(f'<a href="#{html.escape(s)}">{html.escape(s)}</a>' for s in suites)
     body = (f"<h1>haybench results</h1><nav>{nav}</nav>"
             + ("<h2>Solvers</h2>" + _solver_catalogue(solver_ids) if solver_ids else "<p>No stored results.</p>")
             + "\n".join(sections))
     page = (f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>haybench results</title>'
             f"<style>{CSS}</style></head><body>{body}</body></html>")
+    if embed:
+        page = _inline_images(page, report_dir)
     path = report_dir / "index.html"
     path.write_text(page, encoding="utf-8")
     return path

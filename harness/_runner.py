@@ -61,6 +61,19 @@ def _cores() -> int:
         return os.cpu_count() or 1
 
 
+def _check_writable(directory: pathlib.Path) -> None:
+    """Fail before any solver work when the results cannot be written."""
+    import tempfile
+
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=directory, prefix=".write-test-"):
+            pass
+    except OSError as exc:
+        raise HarnessArgumentError(f"cannot write results to {directory}: {exc.strerror or exc}; "
+                                   "choose another --out") from None
+
+
 def resolve_suite(suite: str | None = None, suite_file: str | os.PathLike[str] | None = None) -> SuiteRef:
     """A `SuiteRef`; unknown names raise `HarnessArgumentError` listing the valid ones."""
     try:
@@ -111,7 +124,9 @@ def run_suite(
     Parameters
     ----------
     suite, suite_file : catalogue name, or a Python file defining SUITE or PROBLEMS.
-    solvers : solver ids, optionally with options (``"sqsd[rho=0.5]"``); default the suite's.
+    solvers : solver ids, optionally with options (``"sqsd[rho=0.5]"``); default the suite's, or,
+        for a suite that names none (a user's ``PROBLEMS`` file without ``SOLVERS``), every
+        registered solver that handles the problem.
     problems : problem ids (or case ids) to run; default all.
     out : results directory; rows go to ``out/<suite>/runs.parquet``.
     jobs : worker processes (local executor); default all cores.
@@ -131,8 +146,11 @@ def run_suite(
     ref = resolve_suite(suite, suite_file)
     s = ref.load()
     solver_specs = list(solvers) if solvers else list(s.solvers)
-    if not solver_specs:
-        raise HarnessArgumentError(f"suite {ref.name} names no default solvers; give --solvers")
+    every_solver = not solver_specs  # a suite without defaults: every registered solver that handles it
+    if every_solver:
+        from solvers import solver_names
+
+        solver_specs = solver_names()
     if not (timeout >= 0):  # also catches NaN
         raise HarnessArgumentError(f"--timeout must be a number of seconds >= 0 (0 or inf: no limit), got {timeout}")
     if jobs is not None and jobs < 1:
@@ -140,7 +158,10 @@ def run_suite(
     if executor == "dask" and not scheduler:
         raise HarnessArgumentError("--executor dask needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
     specs = plan_runs(ref, s, solver_specs, list(problems) if problems else None, timeout, tuple(modules))
+    if every_solver:  # only the solvers that handle each problem; a bad plan would be ours, not the user's
+        specs = [sp for sp in specs if sp.not_applicable is None and sp.plan_error is None]
     store = Store(out, ref.name)
+    _check_writable(store.root)
     stored = set() if fresh else store.stored_keys()
     again = set() if fresh or not stored else retry_keys(store.load(), timeout, retry_failed) & stored
     todo = [sp for sp in specs if sp.run_key not in stored or sp.run_key in again]

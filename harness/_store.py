@@ -16,8 +16,8 @@ import contextlib
 import json
 import math
 import os
-import re
 import pathlib
+import re
 import tempfile
 import time
 from collections.abc import Iterator
@@ -28,7 +28,18 @@ import pandas as pd
 from ._record import ROW_COLUMNS
 from ._worker import COUNT_COLUMNS, EXTRA_COLUMNS
 
-__all__ = ["Store", "COLUMNS", "IDENTITY", "normalize", "failure_kind", "retry_keys"]
+__all__ = ["Store", "COLUMNS", "IDENTITY", "normalize", "failure_kind", "retry_keys", "CorruptStore"]
+
+
+class CorruptStore(RuntimeError):
+    """``runs.parquet`` cannot be read (truncated, overwritten): CLI exit status 3, with the
+    command that restores the previous generation."""
+
+    def __init__(self, path: pathlib.Path, suite: str, out: pathlib.Path, cause: BaseException):
+        self.path, self.suite = path, suite
+        hint = f"python -m harness repair --suite {suite}" + ("" if str(out) == "results" else f" --out {out}")
+        super().__init__(f"{path} is unreadable ({type(cause).__name__}: {str(cause).splitlines()[0][:120]}); "
+                         f"restore the previous generation with: {hint}")
 
 #: written by the runner beside the worker's row: the run's wall-clock limit (s; 0 = none).
 #: Store metadata, not part of a run's numbers, so not part of its code version.
@@ -143,10 +154,21 @@ class Store:
     """Read and write the runs of one suite under ``out``."""
 
     def __init__(self, out: str | os.PathLike[str], suite: str):
-        self.root = pathlib.Path(out) / suite
+        self.out = pathlib.Path(out)
+        self.root = self.out / suite
         self.parquet = self.root / "runs.parquet"
+        self.previous = self.root / "runs.prev.parquet"  # the generation before the last merge
         self.pending_dir = self.root / "runs"
         self.suite = suite
+
+    def _read(self, columns: list[str] | None = None, path: pathlib.Path | None = None) -> pd.DataFrame:
+        path = path or self.parquet
+        try:
+            return pd.read_parquet(path, columns=columns)
+        except FileNotFoundError:
+            raise
+        except Exception as exc:  # noqa: BLE001 - pyarrow raises several types for a damaged file
+            raise CorruptStore(path, self.suite, self.out, exc) from None
 
     # ------------------------------------------------------------------ writing
     def write_run(self, row: dict[str, Any]) -> pathlib.Path:
@@ -176,9 +198,18 @@ class Store:
         with _locked(self.root / ".lock"):
             files = self._pending_files()
             if not files and self.parquet.exists():
-                return len(pd.read_parquet(self.parquet, columns=["run_key"]))
+                return len(self._read(["run_key"]))
             df = self._merged(files)
             buf = df.to_parquet(index=False, compression="zstd")
+            if self.parquet.exists():  # keep the generation being replaced (a hard link: no copy)
+                tmp = self.root / f".{self.previous.name}.tmp"
+                with contextlib.suppress(OSError):
+                    tmp.unlink()
+                try:
+                    os.link(self.parquet, tmp)
+                except OSError:  # no hard links here (some network file systems): copy
+                    _atomic_write_bytes(tmp, self.parquet.read_bytes())
+                os.replace(tmp, self.previous)
             _atomic_write_bytes(self.parquet, buf)
             for p in files:
                 with contextlib.suppress(OSError):
@@ -189,7 +220,7 @@ class Store:
     def _merged(self, files: list[pathlib.Path]) -> pd.DataFrame:
         parts = []
         if self.parquet.exists():
-            parts.append(pd.read_parquet(self.parquet))
+            parts.append(self._read())
         rows = self._read_pending(files)
         if rows:
             parts.append(pd.DataFrame(rows))
@@ -210,6 +241,36 @@ class Store:
         """Run keys already stored (for resume): from the parquet and the file names."""
         keys: set[str] = set()
         if self.parquet.exists():
-            keys |= set(pd.read_parquet(self.parquet, columns=["run_key"])["run_key"])
+            keys |= set(self._read(["run_key"])["run_key"])
         keys |= {p.stem.split("-", 1)[1] for p in self._pending_files() if "-" in p.stem}
         return keys
+
+    # ------------------------------------------------------------------ repair
+    def repair(self) -> str:
+        """Make ``runs.parquet`` readable again; returns what was done.
+
+        A readable store is left alone.  An unreadable one is moved aside (``.corrupt``) and
+        replaced by the previous generation merged with the pending run files, so at most
+        the runs of the last merge are lost; a re-run of the suite redoes them.
+        """
+        if not self.parquet.exists() and not self.previous.exists():
+            return f"{self.root}: nothing stored"
+        if self.parquet.exists():
+            try:
+                n = len(self._read(["run_key"]))
+                return f"{self.parquet}: readable, {n} runs; nothing to repair"
+            except CorruptStore:
+                pass
+        with _locked(self.root / ".lock"):
+            kept = 0
+            if self.previous.exists():
+                prev = self._read(path=self.previous)  # raises CorruptStore if both are damaged
+                kept = len(prev)
+            if self.parquet.exists():
+                aside = self.root / f"runs.parquet.corrupt-{time.strftime('%Y%m%dT%H%M%S')}"
+                os.replace(self.parquet, aside)
+            if self.previous.exists():
+                _atomic_write_bytes(self.parquet, self.previous.read_bytes())
+        n = self.consolidate() if self.parquet.exists() or self._pending_files() else 0
+        return (f"{self.parquet}: restored the previous generation ({kept} runs) and merged pending runs: {n} runs "
+                f"stored; re-run the suite to redo the runs of the lost merge")

@@ -14,11 +14,16 @@ import importlib.util
 import pathlib
 import re
 import sys
+import traceback
 from types import ModuleType
 
 from problems import Case, Problem, Suite, get_suite
 
-__all__ = ["SuiteRef", "load_suite", "suite_module"]
+__all__ = ["SuiteRef", "load_suite", "suite_module", "SuiteFileError"]
+
+
+class SuiteFileError(ImportError):
+    """A user's suite file could not be imported (it raised): a bad-input error, in one line."""
 
 _CACHE: dict["SuiteRef", Suite] = {}
 _FILE_MODULES: dict[str, ModuleType] = {}
@@ -53,7 +58,13 @@ def _file_module(path: str) -> ModuleType:
         raise ImportError(f"cannot import suite file {path}")
     module = importlib.util.module_from_spec(spec)
     sys.modules[modname] = module  # dataclasses and pickling look modules up here
-    spec.loader.exec_module(module)
+    try:
+        spec.loader.exec_module(module)
+    except Exception as exc:  # the user's code failed: say where, in one line
+        del sys.modules[modname]
+        tb = [f for f in traceback.extract_tb(exc.__traceback__) if f.filename == str(p)]
+        where = f" (line {tb[-1].lineno})" if tb else ""
+        raise SuiteFileError(f"suite file {path} raised {type(exc).__name__} at import{where}: {exc}") from None
     _FILE_MODULES[path] = module
     return module
 

@@ -1,21 +1,26 @@
 """Command line: ``python -m harness run|table|list|plot|report|compare|baseline``.
 
 A thin layer over the Python API (`harness.run_suite`, `harness.load_results`,
-`harness.render_tables`, ...).  Exit status: 0 when the harness worked (whatever the
-solvers did), 2 for bad arguments (unknown names list the valid ones), 1 for other
-harness failures (e.g. no stored results), and for ``compare`` 1 on regressions.
+`harness.render_tables`, ...).  Exit status (docs/harness.md): 0 the harness worked
+(whatever the solvers did), 1 ``compare`` found regressions, 2 bad input (unknown names
+list the valid ones; nothing stored where asked), 3 harness failure (an unreadable store,
+a broken plug-in, an unwritable output directory), 130 interrupted.  Errors are one line;
+``HAYBENCH_TRACEBACK=1`` prints the traceback of a harness failure too.
 """
+
 
 from __future__ import annotations
 
 import argparse
 import os
+import pathlib
 import sys
 from collections.abc import Sequence
 
 from ._plan import HarnessArgumentError
 
 __all__ = ["main"]
+EXIT_OK, EXIT_REGRESSIONS, EXIT_BAD_INPUT, EXIT_HARNESS_FAILURE, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 
 
 def _csv(s: str | None) -> list[str] | None:
@@ -47,8 +52,8 @@ def _parser() -> argparse.ArgumentParser:
         prog="python -m harness",
         description="Run benchmark suites, store one row per run, and render tables, figures, a report and "
                     "comparisons from the stored runs (docs/harness.md).",
-        epilog="Exit status: 0 harness worked (whatever the solvers did), 2 bad arguments, "
-               "1 other failures or compare found regressions, 130 interrupted.")
+        epilog="Exit status: 0 harness worked (whatever the solvers did), 1 compare found regressions, "
+               "2 bad input, 3 harness failure, 130 interrupted.")
     sub = ap.add_subparsers(dest="command", required=True)
 
     r = sub.add_parser("run", help="run a suite and store one row per run")
@@ -89,6 +94,14 @@ def _parser() -> argparse.ArgumentParser:
 
     rp = sub.add_parser("report", help="static HTML report of every suite under --out")
     rp.add_argument("--out", default="results")
+    rp.add_argument("--embed", action="store_true",
+                    help="inline the figures: one self-contained HTML file (to mail or attach to a CI run)")
+    rp.add_argument("--quiet", action="store_true", help="no progress lines")
+
+    rr = sub.add_parser("repair", help="make a suite's unreadable runs.parquet readable again "
+                                        "(restores the previous generation, merges pending runs)")
+    rr.add_argument("--suite", required=True)
+    rr.add_argument("--out", default="results")
 
     cp = sub.add_parser("compare", help="per-run changes between two result directories")
     cp.add_argument("old")
@@ -149,8 +162,8 @@ def _cmd_table(a: argparse.Namespace) -> int:
     try:
         tables, paths = render_tables(ref, a.out)
     except NoTablePlugin as exc:
-        print(str(exc), file=sys.stderr)
-        return 1
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
     for t in tables:
         print(RENDERERS[a.format](t))
     print(f"wrote {len(paths)} files under {os.path.join(a.out, ref.name)}", file=sys.stderr)
@@ -184,8 +197,8 @@ def _cmd_plot(a: argparse.Namespace) -> int:
     try:
         paths = plot(ref.name, a.kind, out=a.out, problem=a.problem)
     except NoFigurePlugin as exc:
-        print(str(exc), file=sys.stderr)
-        return 1
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
     for p in paths:
         print(p)
     return 0
@@ -194,7 +207,16 @@ def _cmd_plot(a: argparse.Namespace) -> int:
 def _cmd_report(a: argparse.Namespace) -> int:
     from ._report import write_report
 
-    print(write_report(a.out))
+    print(write_report(a.out, embed=a.embed, progress=None if a.quiet else sys.stderr))
+    return 0
+
+
+def _cmd_repair(a: argparse.Namespace) -> int:
+    from ._store import Store
+
+    if not (pathlib.Path(a.out) / a.suite).is_dir():
+        raise HarnessArgumentError(f"no directory {pathlib.Path(a.out) / a.suite}: nothing stored for suite {a.suite!r}")
+    print(Store(a.out, a.suite).repair())
     return 0
 
 
@@ -203,7 +225,7 @@ def _cmd_compare(a: argparse.Namespace) -> int:
 
     res = compare_dirs(a.old, a.new, suite=a.suite, nfg_tol=a.nfg_tol, rel_error_factor=a.rel_error_factor)
     print(format_changes(res, show_all=a.all))
-    return 1 if len(res.regressions) else 0
+    return EXIT_REGRESSIONS if len(res.regressions) else EXIT_OK
 
 
 def _cmd_baseline(a: argparse.Namespace) -> int:
@@ -214,7 +236,7 @@ def _cmd_baseline(a: argparse.Namespace) -> int:
 
 
 COMMANDS = {"run": _cmd_run, "table": _cmd_table, "list": _cmd_list, "plot": _cmd_plot,
-            "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline}
+            "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline, "repair": _cmd_repair}
 
 
 def _terminate_as_interrupt() -> object:
@@ -241,16 +263,23 @@ def main(argv: Sequence[str] | None = None) -> int:
         return COMMANDS[args.command](args)
     except HarnessArgumentError as exc:
         print(f"error: {exc}", file=sys.stderr)
-        return 2
+        return EXIT_BAD_INPUT
     except NoResults as exc:
         print(f"error: {exc}", file=sys.stderr)
-        return 1
+        return EXIT_BAD_INPUT
     except BrokenPipeError:  # output piped into `head`
         sys.stderr.close()
-        return 0
+        return EXIT_OK
     except KeyboardInterrupt:
         print("interrupted: finished runs are stored; run again to resume", file=sys.stderr)
-        return 130
+        return EXIT_INTERRUPTED
+    except Exception as exc:  # noqa: BLE001 - one line, not a traceback; exit 3 tells CI it was the harness
+        if os.environ.get("HAYBENCH_TRACEBACK"):
+            import traceback
+
+            traceback.print_exc()
+        print(f"error: harness failure: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return EXIT_HARNESS_FAILURE
     finally:
         if previous is not None:
             import signal

@@ -39,6 +39,9 @@ def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[[pd.DataFram
         fn = getattr(suite_module(ref), "tables", None)
         if callable(fn):
             return fn
+        raise NoTablePlugin(f"suite file {ref.file} defines no function tables(runs) -> list[Table]; add one to "
+                            "render tables of your suite (docs/user_problems.md). Profiles and the report work "
+                            "without it: python -m harness plot --kind profile")
     modname = f"harness.tables.{suite.replace('-', '_')}"
     try:
         module = importlib.import_module(modname)

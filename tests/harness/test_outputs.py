@@ -60,7 +60,7 @@ def test_plot_kinds_and_report(stored, capsys):
     for stem in ("profile_nfg", "profile_wall_time", "data_profile", "history_rosen_n=2_x1"):
         assert (figs / f"{stem}.png").stat().st_size > 1000 and (figs / f"{stem}.svg").exists()
     assert main(["plot", "--suite-file", tiny, "--kind", "history", "--problem", "zz", "--out", str(out)]) == 2
-    assert main(["plot", "--suite-file", tiny, "--kind", "thesis", "--out", str(out)]) == 1  # no plug-in
+    assert main(["plot", "--suite-file", tiny, "--kind", "thesis", "--out", str(out)]) == 2  # no plug-in: bad input
     capsys.readouterr()
     assert main(["report", "--out", str(out)]) == 0
     page = (out / "report" / "index.html").read_text()

@@ -1,0 +1,94 @@
+"""Bad input exits 2 with one line, harness failures exit 3, nothing is run or stored first
+(docs/harness.md, "Exit status")."""
+
+import pathlib
+
+import pytest
+
+from harness._store import Store
+from harness.cli import main
+
+HERE = pathlib.Path(__file__).parent
+TINY = str(HERE / "tiny_suite.py")
+
+
+def _one_line_error(capsys, code_expected, argv):
+    code = main(argv)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == code_expected, err
+    assert err and err[-1].startswith("error:") and "Traceback" not in "\n".join(err)
+    return err[-1]
+
+
+@pytest.mark.parametrize("opt, says", [("nonsense=1", "valid options: rho"), ("rho=abc", "rho"), ("rho=-1", "rho")])
+def test_invalid_solver_options_exit_2_before_any_work(tmp_path, capsys, opt, says):
+    line = _one_line_error(capsys, 2, ["run", "--suite-file", TINY, "--solvers", f"sqsd[{opt}]",
+                                       "--out", str(tmp_path), "--quiet"])
+    assert says in line
+    assert not Store(tmp_path, "tiny").exists()
+
+
+@pytest.mark.parametrize("value", ["-5", "nan"])
+def test_bad_timeout(tmp_path, capsys, value):
+    assert "--timeout" in _one_line_error(capsys, 2, ["run", "--suite-file", TINY, "--solvers", "sqsd",
+                                                      "--timeout", value, "--out", str(tmp_path)])
+
+
+def test_unwritable_out_found_before_solver_work(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    assert "cannot write results" in _one_line_error(
+        capsys, 2, ["run", "--suite-file", TINY, "--solvers", "sqsd", "--out", str(blocker / "sub")])
+
+
+def test_suite_file_raising_at_import(tmp_path, capsys):
+    bad = tmp_path / "bad_suite.py"
+    bad.write_text("import math\n\nraise RuntimeError('boom')\n")
+    line = _one_line_error(capsys, 2, ["run", "--suite-file", str(bad), "--out", str(tmp_path)])
+    assert "line 3" in line and "boom" in line
+
+
+MINE = ("import numpy as np\nfrom problems import Problem\n"
+        "PROBLEMS = [Problem(name='bowl', x0=[1.0, 2.0], objective=lambda x: float(x @ x),"
+        " gradient=lambda x: 2 * x, f_ref=0.0)]\n")
+
+
+def test_table_of_suite_file_without_tables_names_the_file(tmp_path, capsys):
+    f = tmp_path / "mine.py"
+    f.write_text(MINE)
+    main(["run", "--suite-file", str(f), "--solvers", "sqsd", "--out", str(tmp_path), "--quiet"])
+    capsys.readouterr()
+    line = _one_line_error(capsys, 2, ["table", "--suite-file", str(f), "--out", str(tmp_path)])
+    assert "mine.py" in line and "harness/tables" not in line
+
+
+def test_report_out_missing(capsys):
+    assert "does not exist" in _one_line_error(capsys, 2, ["report", "--out", "/nonexistent/results"])
+
+
+def test_compare_bad_tolerance(capsys):
+    _one_line_error(capsys, 2, ["compare", "results", "results", "--nfg-tol", "-1"])
+
+
+def test_compare_exit_codes_distinguish_regressions_from_failures(tmp_path, capsys):
+    a, b = tmp_path / "a", tmp_path / "b"
+    for d in (a, b):
+        main(["run", "--suite-file", TINY, "--solvers", "sqsd", "--problems", "q2", "--out", str(d), "--quiet"])
+    assert main(["compare", str(a), str(b)]) == 0
+    runs = Store(b, "tiny").load()
+    runs.loc[:, "success"] = False  # solved -> unsolved
+    runs.to_parquet(Store(b, "tiny").parquet, index=False)
+    assert main(["compare", str(a), str(b)]) == 1
+    Store(b, "tiny").parquet.write_bytes(b"PAR1 truncated")
+    capsys.readouterr()
+    line = _one_line_error(capsys, 3, ["compare", str(a), str(b)])
+    assert "repair" in line
+
+
+def test_suite_file_without_solvers_runs_every_solver_that_handles_it(tmp_path, capsys):
+    f = tmp_path / "mine.py"
+    f.write_text(MINE)
+    assert main(["run", "--suite-file", str(f), "--out", str(tmp_path), "--quiet", "--jobs", "2"]) == 0
+    runs = Store(tmp_path, "mine").load()
+    assert {"sqsd", "dynamic-q", "scipy-bfgs", "ipopt"} <= set(runs["solver"])
+    assert (runs["status"] != "not_applicable").all()
