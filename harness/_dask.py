@@ -3,14 +3,22 @@
 Each Dask task runs its `RunSpec` in a child process of the Dask worker (one persistent
 child per worker thread), so the per-run time limit is enforced by killing the child
 exactly as the local pool does, and a crashing solver cannot take the Dask worker down.
-Children come from a ``forkserver`` (Dask workers are multi-threaded; forking them is
-unsafe).  Workers need the project installed and, for ``--suite-file``, the file at the
-same path.  ``scheduler="local"`` (or ``"local:N"``) starts an in-process LocalCluster.
+
+Same numbers as the local executor: a Dask worker was started by someone else, with its
+own environment and NumPy already loaded, so the harness's BLAS kernel pin and thread
+counts (`harness._blas`) cannot act on it.  They act on its children instead: every task
+carries the harness process's numerical environment, which is applied to the worker's
+``os.environ`` before a child is *spawned* (a fresh interpreter that loads OpenBLAS under
+it; a forked or forkserver child would inherit already-loaded kernels).  The environment
+each worker applied is recorded in the run's manifest.  Workers need the project
+installed and, for ``--suite-file``, the file at the same path.  ``scheduler="local"``
+(or ``"local:N"``) starts an in-process LocalCluster.
 """
 
 from __future__ import annotations
 
 import multiprocessing as mp
+import os
 import threading
 from collections.abc import Iterator
 from typing import Any
@@ -24,44 +32,62 @@ __all__ = ["dask_map", "run_isolated"]
 _LOCAL = threading.local()
 
 
-def _context() -> Any:
-    import os
-
-    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(var, "1")  # run children share the Dask worker's cores
-    try:
-        ctx = mp.get_context("forkserver")
-        ctx.set_forkserver_preload(["harness._worker"])
-    except ValueError:  # no forkserver (Windows)
-        ctx = mp.get_context("spawn")
-    return ctx
+NUMERIC_ENV = ("OPENBLAS_CORETYPE", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+_ENV_LOCK = threading.Lock()
 
 
-def _new_slot() -> Slot:
+def numeric_env() -> dict[str, str | None]:
+    """This process's numerical environment: BLAS kernels and thread counts (None: unset)."""
+    return {v: os.environ.get(v) for v in NUMERIC_ENV}
+
+
+def apply_numeric_env(env: dict[str, str | None]) -> dict[str, str | None]:
+    """Make ``env`` this process's numerical environment for the children it spawns next."""
+    with _ENV_LOCK:
+        for k, v in env.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+        return numeric_env()
+
+
+def _new_slot(env: dict[str, str | None]) -> Slot:
+    apply_numeric_env(env)
+    ctx = mp.get_context("spawn")  # a fresh interpreter: OpenBLAS loads under ``env``
     proc = mp.current_process()
     daemon = proc._config.get("daemon")  # type: ignore[attr-defined]
     # Dask's worker processes are daemonic and multiprocessing refuses children of daemons;
     # our child ends by itself when its pipe closes, so the rule's purpose is kept.
     proc._config["daemon"] = False  # type: ignore[attr-defined]
     try:
-        return Slot(_context(), die_with_parent=False)  # forkserver is the parent
+        return Slot(ctx, die_with_parent=False)  # the child ends when its pipe closes
     finally:
         proc._config["daemon"] = daemon  # type: ignore[attr-defined]
 
 
-def run_isolated(spec: RunSpec) -> dict[str, Any]:
-    """The Dask task: run ``spec`` in this thread's child process, with its time limit."""
+def run_isolated(spec: RunSpec, env: dict[str, str | None] | None = None) -> dict[str, Any]:
+    """The Dask task: run ``spec`` in this thread's child process, with its time limit,
+    under the harness's numerical environment ``env``."""
+    env = env if env is not None else numeric_env()
     slot = getattr(_LOCAL, "slot", None)
-    if slot is None or not slot.alive:
-        slot = _LOCAL.slot = _new_slot()
+    if slot is None or not slot.alive or getattr(_LOCAL, "env", None) != env:
+        if slot is not None:
+            slot.close()
+        slot = _LOCAL.slot = _new_slot(env)
+        _LOCAL.env = env
     row, usable = slot.run_one(spec)
     if not usable:
         _LOCAL.slot = None
     return row
 
 
-def dask_map(specs: list[RunSpec], scheduler: str | None) -> Iterator[dict[str, Any]]:
-    """Submit every run to the cluster at ``scheduler``; yield rows as they finish."""
+def dask_map(specs: list[RunSpec], scheduler: str | None,
+             info: dict[str, Any] | None = None) -> Iterator[dict[str, Any]]:
+    """Submit every run to the cluster at ``scheduler``; yield rows as they finish.
+
+    ``info`` (if given) receives ``workers``: the numerical environment each worker applied.
+    """
     from distributed import Client, LocalCluster, as_completed
 
     cluster = None
@@ -72,7 +98,11 @@ def dask_map(specs: list[RunSpec], scheduler: str | None) -> Iterator[dict[str, 
     else:
         client = Client(scheduler, timeout="30s")
     try:
-        futures = {client.submit(run_isolated, sp, pure=False, key=f"run-{sp.run_key}-{i}"): sp
+        env = numeric_env()
+        applied = client.run(apply_numeric_env, env)  # every worker now; late joiners per task
+        if info is not None:
+            info["workers"] = applied
+        futures = {client.submit(run_isolated, sp, env, pure=False, key=f"run-{sp.run_key}-{i}"): sp
                    for i, sp in enumerate(specs)}
         for fut in as_completed(futures):
             sp = futures[fut]

@@ -89,14 +89,14 @@ def resolve_suite(suite: str | None = None, suite_file: str | os.PathLike[str] |
 
 
 def _execute(specs: list[RunSpec], executor: str, jobs: int, scheduler: str | None,
-             start_method: str | None) -> Iterator[dict[str, Any] | None]:
+             start_method: str | None, info: dict[str, Any]) -> Iterator[dict[str, Any] | None]:
     if executor == "local":
         with LocalPool(jobs, start_method) as pool:
             yield from pool.map(specs, heartbeat=HEARTBEAT)
     elif executor == "dask":
         from ._dask import dask_map
 
-        yield from dask_map(specs, scheduler)
+        yield from dask_map(specs, scheduler, info)
     else:
         raise HarnessArgumentError(f"unknown executor {executor!r}; valid executors: local, dask")
 
@@ -171,8 +171,9 @@ def run_suite(
     if todo:
         bar = Progress(ref.name, len(todo), progress)
         last = time.perf_counter()
+        info: dict[str, Any] = {}
         try:
-            for row in _execute(todo, executor, jobs or _cores(), scheduler, start_method):
+            for row in _execute(todo, executor, jobs or _cores(), scheduler, start_method, info):
                 if row is None:  # heartbeat: nothing finished lately
                     bar.tick()
                     continue
@@ -194,7 +195,8 @@ def run_suite(
                 **_manifest.environment(), "suite": ref.name, "suite_file": ref.file, "start": started,
                 "end": _manifest.now(), "argv": list(argv) if argv is not None else sys.argv,
                 "planned": summary.planned, "executed": summary.executed, "skipped": summary.skipped,
-                "failed": summary.failed, "executor": executor, "jobs": jobs, "timeout": timeout})
+                "failed": summary.failed, "executor": executor, "jobs": jobs, "timeout": timeout,
+                **({"dask_workers": info["workers"]} if "workers" in info else {})})
     elif not store.parquet.exists() and store.exists():
         store.consolidate()
     summary.elapsed = time.perf_counter() - t0
