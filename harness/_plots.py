@@ -10,17 +10,28 @@ from __future__ import annotations
 import os
 import pathlib
 import re
+import time
+from typing import TextIO
 
 import numpy as np
 import pandas as pd
 
 from ._api import load_results
 from ._plan import HarnessArgumentError
-from ._profiles import best_so_far, data_profile, performance_profile, prepare_histories, solver_labels
+from ._profiles import (
+    FEAS_TOL,
+    best_so_far,
+    data_profile,
+    performance_profile,
+    prepare_histories,
+    reference_data_profile,
+    solver_labels,
+)
 
 __all__ = ["plot", "KINDS", "DATA_TAUS"]
 
 KINDS = ("profile", "data-profile", "history", "thesis")
+REFERENCE_ER = 1e-5  # E^r of a solved run in the thesis's tables (eq. 3.12)
 DATA_TAUS = (1e-1, 1e-3, 1e-5, 1e-7)
 METRICS = {"nfg": "function+gradient evaluations $N^{fg}$", "wall_time_s": "wall time"}
 
@@ -80,14 +91,38 @@ def _data_profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list
     axes.flat[0].legend(fontsize="small", loc="lower right")
     fig.suptitle(f"{suite}: data profiles (Moré–Wild), feasible f ≤ f_L + τ (f(x0) − f_L)")
     fig.tight_layout()
-    return _save(fig, outdir, "data_profile")
+    paths = _save(fig, outdir, "data_profile")
+    if np.isfinite(pd.to_numeric(runs["f_ref"], errors="coerce")).any():
+        paths += _reference_data_profile(suite, runs, outdir)
+    return paths
+
+
+def _reference_data_profile(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
+    """The tables' rule (E^r <= 1e-5 against the known optimum, feasible) as a data profile:
+    its final values are the tables' solved fractions."""
+    plt = _plt()
+    grid, d = reference_data_profile(runs, er_tol=REFERENCE_ER, feas_tol=FEAS_TOL)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for lab in d.columns:
+        ax.step(grid, d[lab], where="post", label=f"{lab} ({d[lab].iloc[-1]:.0%})")
+    if grid[-1] > 50 * max(grid[1] if grid.size > 1 else 1.0, 1e-3):
+        ax.set_xscale("log")
+    ax.set_xlabel(r"evaluations / $(n_p + 1)$")
+    ax.set_ylabel("fraction of problems solved")
+    ax.set_ylim(-0.02, 1.02)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize="small", loc="lower right")
+    ax.set_title(f"{suite}: solved as in the tables (E^r ≤ {REFERENCE_ER:g} vs f_ref, violation ≤ {FEAS_TOL:g})")
+    fig.tight_layout()
+    return _save(fig, outdir, "data_profile_reference")
 
 
 def _slug(s: str) -> str:
     return re.sub(r"[^A-Za-z0-9.=_-]+", "_", s).strip("_")
 
 
-def _histories(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, problem: str | None) -> list[pathlib.Path]:
+def _histories(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, problem: str | None,
+               progress: TextIO | None = None) -> list[pathlib.Path]:
     plt = _plt()
     runs = runs[runs["status"] != "not_applicable"].assign(label=solver_labels(runs))
     if problem:
@@ -97,14 +132,21 @@ def _histories(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, problem: st
                                        f"{', '.join(sorted(runs['problem'].unique()))}")
         runs = sel
     paths = []
-    for case_id, grp in runs.groupby("case_id", sort=True):
+    groups = list(runs.groupby("case_id", sort=True))
+    t0 = last = time.perf_counter()
+    for i, (case_id, grp) in enumerate(groups, 1):
+        if progress is not None and (time.perf_counter() - last > 2.0 or i in (1, len(groups))):
+            print(f"plot history: [{i}/{len(groups)}] {case_id} ({time.perf_counter() - t0:.0f} s)",
+                  file=progress, flush=True)
+            last = time.perf_counter()
         f_ref = grp["f_ref"].iloc[0]
         has_ref = bool(np.isfinite(f_ref))
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
         for r in grp.itertuples():
             nfg, fb = best_so_far(r.history)
             ok = np.isfinite(fb)
-            if not ok.any():
+            if not ok.any():  # say so in the legend rather than leave the solver out silently
+                ax.plot([], [], " ", label=f"{r.label} ({r.status}; no feasible point recorded)")
                 continue
             y = np.maximum(fb[ok] - f_ref, 1e-17) if has_ref else fb[ok]
             ax.step(nfg[ok], y, where="post", label=f"{r.label} ({r.status})")
@@ -124,8 +166,11 @@ def _histories(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, problem: st
 
 
 def plot(suite: str, kind: str, out: str | os.PathLike[str] = "results", problem: str | None = None,
-         runs: pd.DataFrame | None = None) -> list[pathlib.Path]:
-    """Draw figures of ``kind`` from stored runs; returns the written paths."""
+         runs: pd.DataFrame | None = None, progress: TextIO | None = None) -> list[pathlib.Path]:
+    """Draw figures of ``kind`` from stored runs; returns the written paths.
+
+    progress : stream for progress lines of long plots (history plots of many cases).
+    """
     if kind not in KINDS:
         raise HarnessArgumentError(f"unknown plot kind {kind!r}; valid kinds: {', '.join(KINDS)}")
     runs = load_results(suite, out) if runs is None else runs
@@ -135,7 +180,7 @@ def plot(suite: str, kind: str, out: str | os.PathLike[str] = "results", problem
     if kind == "data-profile":
         return _data_profiles(suite, runs, outdir)
     if kind == "history":
-        return _histories(suite, runs, outdir, problem)
+        return _histories(suite, runs, outdir, problem, progress)
     from .figures import thesis_figures
 
     return thesis_figures(suite, runs, outdir)

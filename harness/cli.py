@@ -91,6 +91,7 @@ def _parser() -> argparse.ArgumentParser:
     pl.add_argument("--kind", required=True, choices=["profile", "data-profile", "history", "thesis"])
     pl.add_argument("--problem", help="problem id or case id (history plots; default: every case)")
     pl.add_argument("--out", default="results")
+    pl.add_argument("--quiet", action="store_true", help="no progress lines")
 
     rp = sub.add_parser("report", help="static HTML report of every suite under --out")
     rp.add_argument("--out", default="results")
@@ -195,7 +196,9 @@ def _cmd_plot(a: argparse.Namespace) -> int:
 
     ref = resolve_suite(a.suite, a.suite_file)
     try:
-        paths = plot(ref.name, a.kind, out=a.out, problem=a.problem)
+        if a.kind in ("thesis", "history") and not a.quiet:
+            print(f"plot: drawing {a.kind} figures of {ref.name} ...", file=sys.stderr, flush=True)
+        paths = plot(ref.name, a.kind, out=a.out, problem=a.problem, progress=None if a.quiet else sys.stderr)
     except NoFigurePlugin as exc:
         print(f"error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT

@@ -42,6 +42,10 @@ def _key(x: np.ndarray) -> bytes:
     return hashlib.blake2b(np.ascontiguousarray(x, dtype=float).tobytes(), digest_size=16).digest()
 
 
+#: floats of storage for points whose history entries the solver left open (about 80 MB)
+HISTORY_POINT_BUDGET = 10_000_000
+
+
 class Oracle:
     """Counting, caching access to a `Problem` for solvers.
 
@@ -65,6 +69,10 @@ class Oracle:
         self._cache: dict[str, Any] = {}
         # history rows: [nfg, f, max_violation] for each distinct point, filled as known
         self._hist: list[list[float]] = []
+        # points whose f or violation the solver never asked for (gradient-only methods such as
+        # LFOPC), kept up to a memory cap so the history can be completed outside the count
+        self._unfilled: dict[int, np.ndarray] = {}
+        self._unfilled_cap = max(0, HISTORY_POINT_BUDGET // max(problem.n, 1))
         self.last_x: np.ndarray = problem.x0.copy()
 
     # ------------------------------------------------------------------ structure
@@ -120,6 +128,9 @@ class Oracle:
                 viol = bviol if not (self.n_ineq or self.n_eq) else np.nan
                 self._hist.append([self.nfg, np.nan, viol])
                 self._cache["hist_row"] = self._hist[-1]
+                self._cache["hist_index"] = len(self._hist) - 1
+                if len(self._unfilled) < self._unfilled_cap:
+                    self._unfilled[len(self._hist) - 1] = x.copy()
                 self._cache["bviol"] = bviol
             self.last_x = x.copy()
         return x
@@ -140,6 +151,8 @@ class Oracle:
             if self.n_eq:
                 v = max(v, float(np.max(np.abs(self._cache["eq"]), initial=0.0)))
             row[2] = v
+        if row[1] == row[1] and row[2] == row[2]:  # both known: nothing left to complete
+            self._unfilled.pop(self._cache.get("hist_index", -1), None)
 
     def _call_f(self, x: np.ndarray) -> float:
         t = time.perf_counter()
@@ -257,3 +270,23 @@ class Oracle:
     def history(self) -> np.ndarray:
         """Array (k, 3) of [nfg, f, max_violation] per distinct point (NaN where not evaluated)."""
         return np.array(self._hist, dtype=float).reshape(-1, 3)
+
+    def complete_history(self) -> np.ndarray:
+        """The history with f and the violation filled in where the solver never asked for them.
+
+        Gradient-only methods (LFOPC, ETOPC) never evaluate f, so their histories would say
+        nothing about progress.  The missing values are evaluated here, after the run, as
+        report evaluations: outside every count and outside the run's timed region.  Points
+        beyond `HISTORY_POINT_BUDGET` floats of storage stay NaN.
+        """
+        h = self.history()
+        p = self.problem
+        for i, x in self._unfilled.items():
+            try:
+                if not np.isfinite(h[i, 1]):
+                    h[i, 1] = float(p.objective(x))
+                if not np.isfinite(h[i, 2]):
+                    h[i, 2] = p.max_violation(x)
+            except Exception:  # noqa: BLE001 - a point the problem cannot evaluate stays NaN
+                continue
+        return h

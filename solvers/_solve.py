@@ -92,5 +92,5 @@ def _finish(problem: Problem, inst: AbstractSolver, oracle: Oracle, out: SolverO
         solver=inst.name, problem=problem.name, x=x, f=f, status=status, message=message,
         nfg=c["nfg"], nf=c["nf"], ng=c["ng"], nc=c["nc"], nj=c["nj"], nh=c["nh"], nit=int(out.nit),
         max_violation=viol, success=bool(success), wall_time=wall, time_in_evals=oracle.time_in_evals,
-        options=inst.settings(), history=oracle.history(), extra=dict(out.extra),
+        options=inst.settings(), history=oracle.complete_history(), extra=dict(out.extra),
     )
