@@ -27,6 +27,10 @@ PACKAGES = ("numpy", "scipy", "pandas", "pyarrow", "matplotlib", "casadi", "cvxp
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
+#: pathspecs excluded from ``git_dirty``: what runs, plots and reports write
+GENERATED = (":(exclude)results", ":(exclude)*.egg-info", ":(exclude).benchmarks")
+
+
 def _git(*args: str) -> str | None:
     try:
         out = subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True, timeout=10)
@@ -44,7 +48,8 @@ def environment() -> dict[str, Any]:
         except importlib.metadata.PackageNotFoundError:
             versions[p] = None
     commit = _git("rev-parse", "HEAD")
-    status = _git("status", "--porcelain", "--untracked-files=no") if commit else None
+    # the code only: results/ and other generated paths are written by the runs themselves
+    status = _git("status", "--porcelain", "--untracked-files=no", "--", ".", *GENERATED) if commit else None
     return {
         "python": sys.version.split()[0],
         "implementation": platform.python_implementation(),

@@ -170,3 +170,25 @@ def test_crash_between_parquet_replace_and_unlink_leaves_no_duplicates(tiny_file
     assert store.consolidate() == 2 and not list(store.pending_dir.glob("*.json"))
     s = run(tiny_file, tmp_path, problems=["q2", "q20"])
     assert s.executed == 0
+
+
+def test_git_dirty_reflects_the_code_not_the_results(tmp_path, monkeypatch):
+    import subprocess
+
+    from harness import _manifest
+
+    def git(*a):
+        subprocess.run(["git", "-c", "user.email=t@t", "-c", "user.name=t", *a], cwd=tmp_path, check=True,
+                       capture_output=True)
+
+    (tmp_path / "results" / "hs").mkdir(parents=True)
+    (tmp_path / "results" / "hs" / "table.md").write_text("a")
+    (tmp_path / "code.py").write_text("x = 1")
+    git("init", "-q")
+    git("add", ".")
+    git("commit", "-qm", "init")
+    monkeypatch.setattr(_manifest, "ROOT", tmp_path)
+    (tmp_path / "results" / "hs" / "table.md").write_text("b")  # a run rewrote its results
+    assert _manifest.environment()["git_dirty"] is False
+    (tmp_path / "code.py").write_text("x = 2")
+    assert _manifest.environment()["git_dirty"] is True
