@@ -17,3 +17,13 @@ def test_constraint_sign_convention_round_trip():
     p = _to_problem(lambda x: x @ x, [2.0, 0.0], constraints=[{"type": "ineq", "fun": lambda x: x[0] - 1.0}])
     assert p.ineq(np.array([2.0, 0.0]))[0] == -1.0
     assert p.max_violation(np.array([0.5, 0.0])) == 0.5
+
+
+def test_readme_example_converges_as_printed():
+    """The README's SciPy example, verbatim."""
+    from scipy.optimize import minimize, rosen, rosen_der
+
+    from solvers.scipy_compat import method
+
+    res = minimize(rosen, [-1.2, 1], jac=rosen_der, method=method("sqsd"), options={"rho": 0.3})
+    assert res.success and res.fun < 1e-12 and res.nit < 200 and res.nfg == res.nit + 1
