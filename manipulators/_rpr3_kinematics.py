@@ -48,7 +48,7 @@ def jacobian(base: np.ndarray, r: float, U, w) -> np.ndarray:
     ``(x_i, y_i)`` the leg vector (``x_AC``, ``y_AC`` ... of eq. 5.12) and ``s_i`` the
     platform end.  Taken literally as printed (positional columns divided by ``r v_i``,
     rotational column by ``v_i``), which reproduces Table 5.3's f(d0)
-    (harness/reference/ERRATA.md).  ``J @ [r u1', r u2', w'] = v'``.
+    (problems/reference/ERRATA.md).  ``J @ [r u1', r u2', w'] = v'``.
     """
     U, w = _poses(U, w)
     L = leg_vectors(base, r, U, w)

@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from harness.reference import thesis_table
+from problems.reference import thesis_table
 
 from ._base import Table, count
 

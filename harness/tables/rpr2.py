@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from harness.reference import thesis_table
+from problems.reference import thesis_table
 
 from ._base import Table, count_cell
 

@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from harness.reference import thesis_table
+from problems.reference import thesis_table
 
 from ._base import Table, count
 from .rpr2 import E_REL, O_LIMIT, _decoded, _evaluate, _num, _span

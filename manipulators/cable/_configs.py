@@ -19,7 +19,7 @@ BETA_MIN = np.pi / 18
 
 
 def _table(stem: str):
-    from harness.reference import thesis_table
+    from problems.reference import thesis_table
 
     return thesis_table(stem)
 

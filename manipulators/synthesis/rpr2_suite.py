@@ -55,7 +55,7 @@ P_START = (-4.0, -0.1, 4.0)  # Section 4.7.3, d0 for P1-P3
 P_LIMITS = ((4.0, 4.0), (7.0, 7.0))  # l_i^min = 4, l_i^max = 7 (Section 4.7.3)
 LMAX_RATIO = 1.5  # l_i^max = 1.5 l_i^min (Section 4.5.2)
 
-# Settings stated in the text (harness/reference/thesis_tables/run_settings.csv):
+# Settings stated in the text (problems/reference/thesis_tables/run_settings.csv):
 SETTINGS = {
     "o": dict(chord=0.5, fd="forward", fd_step=1e-5, eps_f=1e-6, eps_x=1e-4, eps_g=1e-3, rho=0.2),  # 4.5.2
     # 4.6.2: chord 0.1, Gamma 1e-3, eps_f 1e-6, eps_x 1e-4; difference scheme and rho not
@@ -211,7 +211,7 @@ EXACT_K = 512  # points of W_p's boundary at which the exact E problem's leg lim
 def thesis_e_designs() -> dict[str, np.ndarray]:
     """Table 4.7's published d* per start (empty if the reference data are unavailable)."""
     try:
-        from harness.reference import thesis_table
+        from problems.reference import thesis_table
 
         t = thesis_table("table_4_7_E_synthesis")
     except Exception:  # noqa: BLE001  (reference data optional at run time)

@@ -56,7 +56,7 @@ N_KAPPA = 1024  # angles per slice for the dense min kappa^-1
 ENCLOSURE_TOL = 1e-3  # largest area(W_p minus W_c)/area(W_p) counted as enclosed (see exact_enclosure)
 WINDOW_TOL = 1e-3  # leg-length slack with which enclosing_window's set must cover the required orientations
 
-# harness/reference/thesis_tables/run_settings.csv, rows of Sections 5.6.2-5.8.2
+# problems/reference/thesis_tables/run_settings.csv, rows of Sections 5.6.2-5.8.2
 SETTINGS: dict[str, dict[str, Any]] = {
     "so": dict(phis=(0.0,), dextrous=False, start=START_SO, rho=0.1, eps_f=1e-6, eps_x=1e-4,
                fd="forward", fd_step=1e-6, chord=0.02, table="5.3"),
@@ -224,7 +224,7 @@ def synthesis_problem(kind: str, prescribed: str = "P1", chord: float | None = N
 
 def _thesis_row(table: str, prescribed: str) -> dict[str, Any] | None:
     try:
-        from harness.reference import thesis_table
+        from problems.reference import thesis_table
 
         t = thesis_table("table_5_3_to_5_5_SO_MO_D_synthesis")
     except Exception:  # noqa: BLE001  (reference data optional at run time)

@@ -71,7 +71,7 @@ def dextrous_area(d: np.ndarray, load: str) -> float:
 @functools.cache
 def published() -> dict[tuple[int, str], list[dict[str, Any]]]:
     """Tables 6.5-6.10 rows per (cables, load): run, N^g, d0, A_d0, d*, A_d*."""
-    from harness.reference import thesis_table
+    from problems.reference import thesis_table
 
     out: dict[tuple[int, str], list[dict[str, Any]]] = {}
     for r in thesis_table("table_6_5_to_6_10_tdpm_synthesis").itertuples():

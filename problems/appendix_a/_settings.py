@@ -1,6 +1,6 @@
 """The thesis's run settings for the Appendix A suite (Section 2.5, Tables 2.1-2.2).
 
-Sources (vendored in harness/reference/thesis_tables/run_settings.csv):
+Sources (vendored in problems/reference/thesis_tables/run_settings.csv):
 
 * eps_g = 1e-5, eps_x = 1e-8 for every run, except eps_g = 1e-75 ("~ 0") and
   eps_x = 1e-12 for problem 12 at n = 50000 and all problems 14 (Section 2.5, l. 806).

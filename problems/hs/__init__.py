@@ -54,7 +54,7 @@ def problem(pid: str):
 
 def _thesis_rows() -> dict[str, dict[str, dict[str, Any]]]:
     """Table 3.1 as printed, by problem id and method ('sqp', 'dynamic_q')."""
-    from harness.reference import thesis_table  # the vendored CSV (no run-time /work/shared)
+    from problems.reference import thesis_table  # the vendored CSV (no run-time /work/shared)
 
     out: dict[str, dict[str, dict[str, Any]]] = {}
     for row in thesis_table("table_3_1_dynamic_q_vs_sqp").to_dict("records"):

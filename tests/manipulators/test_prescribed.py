@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from harness.reference import thesis_table
+from problems.reference import thesis_table
 from manipulators.prescribed import P1, P2, P3, P3_ARCS, chapter5_workspaces, get_prescribed
 
 

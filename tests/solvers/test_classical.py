@@ -2,7 +2,7 @@
 
 import pytest
 
-from harness.reference import thesis_table
+from problems.reference import thesis_table
 from problems import Oracle, Problem
 from problems.appendix_a import make_case
 from solvers import get_solver_class, solve

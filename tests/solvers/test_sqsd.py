@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from harness.reference import thesis_table
+from problems.reference import thesis_table
 from problems import Problem
 from problems.appendix_a import make_case
 from solvers import solve
