@@ -46,3 +46,12 @@ def test_broken_suite_does_not_break_the_report(tmp_path):
     (other / "runs.parquet").write_bytes(b"not parquet")
     page = harness.write_report(tmp_path).read_text()
     assert "results not readable" in page and "tiny" in page
+
+
+def test_report_embed_is_self_contained(tmp_path, capsys):
+    _run(tmp_path, ["q2", "q20"])
+    assert harness.plot("tiny", "profile", out=tmp_path)
+    assert main(["report", "--out", str(tmp_path), "--embed"]) == 0
+    assert "report: [1/1] tiny" in capsys.readouterr().err  # progress lines
+    page = (tmp_path / "report" / "index.html").read_text()
+    assert 'src="data:image/png;base64,' in page and '.png"' not in page
