@@ -40,7 +40,7 @@ class Comparison:
 
     @property
     def regressions(self) -> pd.DataFrame:
-        return self.changes[self.changes["verdict"].str.startswith("REGRESSION")]
+        return self.changes[self.changes["verdict"].astype(str).str.startswith("REGRESSION")]
 
 
 def load_counts(root: str | os.PathLike[str], suite: str) -> pd.DataFrame:
@@ -116,7 +116,8 @@ def compare_runs(old: pd.DataFrame, new: pd.DataFrame, nfg_tol: float = 0.10,
     only_old = lo[~lo.set_index(k2).index.isin(pair.set_index(k2).index)] if len(pair) else lo
     only_new = ro[~ro.set_index(k2).index.isin(pair.set_index(k2).index)] if len(pair) else ro
     both = both.reset_index(drop=True)
-    both["verdict"] = [_verdict(r, nfg_tol, rel_error_factor) for _, r in both.iterrows()] if len(both) else []
+    both["verdict"] = pd.Series([_verdict(r, nfg_tol, rel_error_factor) for _, r in both.iterrows()],
+                                index=both.index, dtype=object)
     return Comparison(both.sort_values(["suite", "case_id", "solver"]).reset_index(drop=True),
                       only_old[KEY].reset_index(drop=True), only_new[KEY].reset_index(drop=True))
 

@@ -76,3 +76,23 @@ def test_compare_with_rows_without_counts(failed_store):
     assert "—" in format_changes(res)
     back = compare_runs(new, old)  # and the other way round
     assert len(back.changes) == len(res.changes)
+
+
+def test_compare_summarizes_unmatched_runs_in_short_lines():
+    old = Store(ROOT / "results", "hs").load()
+    text = format_changes(compare_runs(old.iloc[:0], old))  # every run "only in new"
+    assert f"only in new: {len(old)} runs" in text
+    assert max(len(line) for line in text.splitlines()) <= 120
+    assert "more (--all lists every run)" in text
+
+
+def test_history_plots_report_progress(tmp_path):
+    import io
+
+    from harness._plots import plot
+
+    runs = Store(ROOT / "results", "hs").load()
+    runs = runs[runs["problem"].isin(["hs010", "hs014", "hs022"])]
+    buf = io.StringIO()
+    paths = plot("hs", "history", out=tmp_path, runs=runs, progress=buf)
+    assert len(paths) == 6 and "plot history: [3/3]" in buf.getvalue()
