@@ -1,4 +1,4 @@
-"""``harness compare OLD NEW`` and ``harness baseline``: performance tracking (issue 4, §7).
+"""``harness compare OLD NEW`` and ``harness baseline``: performance tracking (docs/harness.md).
 
 Runs are matched on (suite, case_id, solver, settings_hash), then - for runs whose
 settings changed (a new option, a new default) - on (suite, case_id, solver) where that

@@ -1,4 +1,4 @@
-"""Dask executor: the same runs on a `dask.distributed` cluster (issue 4, Section 3).
+"""Dask executor: the same runs on a `dask.distributed` cluster (docs/harness.md).
 
 Each Dask task runs its `RunSpec` in a child process of the Dask worker (one persistent
 child per worker thread), so the per-run time limit is enforced by killing the child

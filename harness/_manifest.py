@@ -1,4 +1,4 @@
-"""The environment manifest written beside each suite's runs (issue 4, Section 1).
+"""The environment manifest written beside each suite's runs (docs/harness.md).
 
 ``DIR/<suite>/manifest.json`` holds one entry per ``run`` session: Python and package
 versions, git commit and dirty flag, machine, start and end times, the command line and

@@ -1,7 +1,7 @@
 """Planning: (case x solver) -> run specifications with their keys.
 
 A run's key is (suite, problem, n, start, variant, solver, settings hash, code version)
-(issue 4, Section 1).  The settings are the solver's full option values after the
+(docs/harness.md, "Results store and resume").  The settings are the solver's full option values after the
 case's options are applied, hashed exactly as `harness._record.settings_hash` hashes the
 options of the finished run, so a key computed before a run equals the stored one.
 """

@@ -1,7 +1,8 @@
 """`run_suite`: plan the runs of a suite, skip stored ones, execute the rest, store rows.
 
 The harness's own failures (unknown names, bad values) raise `HarnessArgumentError`;
-whatever the solvers do is recorded as rows and never stops the suite (issue 4).
+whatever the solvers do is recorded as rows and never stops the suite (docs/harness.md,
+"Fault isolation").
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """The results store of one suite: ``DIR/<suite>/runs.parquet`` plus pending run files.
 
-Durability (issue 4, Section 1): every finished run is written at once to its own file
+Durability (docs/harness.md, "Results store and resume"): every finished run is written at once to its own file
 ``DIR/<suite>/runs/<time>-<run_key>.json`` through a temporary file and `os.replace`
 (atomic on POSIX and Windows), so a killed process (SIGINT or SIGKILL) leaves either the
 whole file or none.  `consolidate` merges the pending files into ``runs.parquet`` — again

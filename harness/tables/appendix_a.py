@@ -29,7 +29,7 @@ METHODS = {"SQSD": "sqsd", "SD": "sd", "FR": "fletcher-reeves", "PR": "polak-rib
 SCIPY = ("scipy-cg", "scipy-bfgs", "scipy-lbfgsb")
 
 NOTES = [
-    "Tolerances (issue 2): SQSD N^fg within 15% of the thesis for problems 1-11 and problem 12 with n <= 200, "
+    "Tolerances (docs/appendix_a.md): SQSD N^fg within 15% of the thesis for problems 1-11 and problem 12 with n <= 200, "
     "within 50% otherwise; SD/FR/PR N^fg within 50% where the thesis converged; E^r (or I^inf) no worse than "
     "max(10 x thesis, 1e-8); where the thesis printed '> N' (no convergence) ours must not converge either. "
     "A cell outside its tolerance is flagged.",

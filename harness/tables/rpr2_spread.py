@@ -34,7 +34,7 @@ def _thesis_f() -> dict[tuple[str, str], float]:
 
 
 def _within(kind: str, f: float, f_th: float, dwp_exact: float) -> bool:
-    """The acceptance test of the row's thesis table (issue 5)."""
+    """The tolerance of the row's thesis table (docs/manipulators.md)."""
     if not math.isfinite(f):
         return False
     if kind == "o":

@@ -31,7 +31,7 @@ __all__ = ["tables", "dextrous_table", "synthesis_table", "DEXTROUS_RANGES"]
 #: span from nearly the constant-orientation workspace to nearly empty.
 DEXTROUS_RANGES = (0.0, 5.0, 10.0, 15.0, 20.0)
 F_TOL = 0.01
-F0_TOL = 0.003  # issue 6: f(d0) of Table 5.3 to +-0.003
+F0_TOL = 0.003  # f(d0) of Table 5.3 to +-0.003 (docs/rpr3.md)
 
 KINDS = {"so": ("5.3", "SO synthesis (5.34): single constant orientation, phi = 0"),
          "mo": ("5.4", "MO synthesis (5.37): slices phi = -5, 0, +5 degrees"),

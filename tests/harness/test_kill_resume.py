@@ -1,5 +1,5 @@
 """kill -9 in the middle of a run loses only the runs in flight; a re-run completes the
-store with no run missing or duplicated (issue 4 acceptance)."""
+store with no run missing or duplicated (docs/harness.md, "Durability")."""
 
 import os
 import signal

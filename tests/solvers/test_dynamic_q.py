@@ -110,7 +110,7 @@ def test_hs072_with_the_suite_setting():
 
 @pytest.mark.slow
 def test_whole_hs_suite_acceptance():
-    # issue 3: >= 37 of 40 solved (E^r <= 1e-5 vs f* or a published/thesis local minimum,
+    # docs/thesis_solvers.md: >= 37 of 40 solved (E^r <= 1e-5 vs f* or a published/thesis local minimum,
     # violation <= 1e-6); total N^fg within 0.5-2x the thesis's over problems both solved
     problems = pytest.importorskip("problems.hs")
     cases = list(problems.SUITE.cases())
