@@ -37,8 +37,12 @@ def list_suites() -> Iterator[str]:
             yield f"{name:12s} [unavailable: {type(exc).__name__}: {exc}]"
 
 
-def list_problems(ref: SuiteRef) -> Iterator[str]:
-    s = ref.load()
+def list_problems(ref: SuiteRef, select: str | None = None) -> Iterator[str]:
+    from ._runner import select_suite
+
+    s = select_suite(ref.load(), select)
+    if select:
+        yield f"# {len(s.cases())} problems of suite {s.name} selected by {select!r}"
     for c in s.cases():
         form = ",".join(sorted(c.problem.form)) or "unconstrained"
         fref = "" if c.problem.f_ref is None else f"  f_ref={c.problem.f_ref:.10g}"

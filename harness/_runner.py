@@ -75,6 +75,20 @@ def _check_writable(directory: pathlib.Path) -> None:
                                    "choose another --out") from None
 
 
+def select_suite(s: Any, select: str | None) -> Any:
+    """``s`` restricted to ``select`` (None: unchanged); bad selections are argument errors."""
+    if not select:
+        return s
+    try:
+        chosen = s.select(select)
+        n = len(chosen.cases())
+    except ValueError as exc:  # SelectionError, or a suite without selections
+        raise HarnessArgumentError(str(exc)) from None
+    if n == 0:
+        raise HarnessArgumentError(f"the selection {select!r} picks no problem of suite {s.name}")
+    return chosen
+
+
 def resolve_suite(suite: str | None = None, suite_file: str | os.PathLike[str] | None = None) -> SuiteRef:
     """A `SuiteRef`; unknown names raise `HarnessArgumentError` listing the valid ones."""
     try:
@@ -108,6 +122,7 @@ def run_suite(
     suite_file: str | os.PathLike[str] | None = None,
     solvers: Sequence[str] | None = None,
     problems: Sequence[str] | None = None,
+    select: str | None = None,
     out: str | os.PathLike[str] = "results",
     jobs: int | None = None,
     timeout: float = 600.0,
@@ -129,6 +144,8 @@ def run_suite(
         for a suite that names none (a user's ``PROBLEMS`` file without ``SOLVERS``), every
         registered solver that handles the problem.
     problems : problem ids (or case ids) to run; default all.
+    select : a selection of the suite's problems by their properties, for suites that
+        support it (``cutest``, ``hs-all``: ``"type=u,n<=100"``; docs/cutest.md).
     out : results directory; rows go to ``out/<suite>/runs.parquet``.
     jobs : worker processes (local executor); default all cores.
     timeout : per-run wall-clock limit in seconds (0 or inf: none; negative or NaN is an error).
@@ -145,7 +162,7 @@ def run_suite(
     if modules:
         import_modules(tuple(modules))
     ref = resolve_suite(suite, suite_file)
-    s = ref.load()
+    s = select_suite(ref.load(), select)
     solver_specs = list(solvers) if solvers else list(s.solvers)
     every_solver = not solver_specs  # a suite without defaults: every registered solver that handles it
     if every_solver:

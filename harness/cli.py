@@ -60,6 +60,8 @@ def _parser() -> argparse.ArgumentParser:
     _suite_args(r)
     r.add_argument("--solvers", help="comma-separated solver ids, options as id[k=v] (default: the suite's)")
     r.add_argument("--problems", help="comma-separated problem ids or case ids (default: all)")
+    r.add_argument("--select", help="pick problems by their properties, e.g. \"type=u,n<=100\" (suites cutest, "
+                                    "hs-all; docs/cutest.md)")
     r.add_argument("--out", default="results", help="results directory (default: results/)")
     r.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
     r.add_argument("--timeout", type=float, default=600.0,
@@ -85,6 +87,7 @@ def _parser() -> argparse.ArgumentParser:
     ls.add_argument("what", choices=["solvers", "suites", "problems"])
     _suite_args(ls, required=False)
     ls.add_argument("--brief", action="store_true", help="solvers without their options")
+    ls.add_argument("--select", help="with `list problems`: only the problems a selection picks (docs/cutest.md)")
 
     pl = sub.add_parser("plot", help="figures from stored results (PNG and SVG)")
     _suite_args(pl)
@@ -124,6 +127,7 @@ def _cmd_run(a: argparse.Namespace) -> int:
     from ._runner import run_suite
 
     summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
+                        select=a.select,
                         out=a.out, jobs=a.jobs, timeout=a.timeout, fresh=a.fresh, retry_failed=a.retry_failed,
                         executor=a.executor,
                         scheduler=a.scheduler, modules=a.modules, progress=None if a.quiet else sys.stderr,
@@ -182,7 +186,7 @@ def _cmd_list(a: argparse.Namespace) -> int:
     else:
         if not (a.suite or a.suite_file):
             raise HarnessArgumentError("list problems needs --suite or --suite-file")
-        lines = _listing.list_problems(resolve_suite(a.suite, a.suite_file))
+        lines = _listing.list_problems(resolve_suite(a.suite, a.suite_file), a.select)
     for line in lines:
         print(line)
     return 0

@@ -15,6 +15,8 @@ SUITES: dict[str, str] = {
     "rpr2-spread": "manipulators.synthesis.rpr2_spread_suite",
     "rpr3": "manipulators.synthesis.rpr3_suite",
     "tdpm": "manipulators.synthesis.tdpm_suite",
+    "hs-all": "problems.s2mpj.hs_all_suite",
+    "cutest": "problems.s2mpj.cutest_suite",
 }
 
 

