@@ -30,7 +30,14 @@ from ._profiles import (
 
 __all__ = ["plot", "KINDS", "DATA_TAUS"]
 
-KINDS = ("profile", "data-profile", "history", "thesis")
+KINDS = ("profile", "data-profile", "history", "thesis", "log-ratio")
+#: suites whose runs count as solved by the campaign rule (harness/tables/_campaign.py), not by the
+#: solver's own convergence flag: library campaigns where "converged" alone means little
+CAMPAIGN_SUITES = ("cutest", "hs-all")
+#: (thesis solver, established solver) pairs of the log-ratio profiles, where both ran
+LOG_RATIO_PAIRS = (("dynamic-q", "scipy-slsqp"), ("dynamic-q", "ipopt"), ("lfopc", "ipopt"),
+                   ("etopc", "ipopt"), ("sqsd", "scipy-bfgs"))
+STYLES = ("-", "--", "-.", ":")
 REFERENCE_ER = 1e-5  # E^r of a solved run in the thesis's tables (eq. 3.12)
 DATA_TAUS = (1e-1, 1e-3, 1e-5, 1e-7)
 METRICS = {"nfg": "function+gradient evaluations $N^{fg}$", "wall_time_s": "wall time"}
@@ -61,8 +68,9 @@ def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[path
     for metric, what in METRICS.items():
         grid, rho = performance_profile(runs, metric)
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
-        for lab in rho.columns:
-            ax.step(grid, rho[lab], where="post", label=lab)
+        for i, lab in enumerate(rho.columns):  # many solvers: colours and line styles both vary
+            ax.step(grid, rho[lab], where="post", label=f"{lab} ({rho[lab].iloc[-1]:.0%})",
+                    linestyle=STYLES[(i // 10) % len(STYLES)], color=f"C{i % 10}")
         ax.set_xlabel(r"$\log_2 \tau$ (cost relative to the best solver)")
         ax.set_ylabel(r"fraction of problems solved, $\rho_s(\tau)$")
         ax.set_ylim(-0.02, 1.02)
@@ -121,6 +129,38 @@ def _slug(s: str) -> str:
     return re.sub(r"[^A-Za-z0-9.=_-]+", "_", s).strip("_")
 
 
+def _log_ratios(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
+    """Morales (2002) log-ratio profiles: per problem log2(N^fg_a / N^fg_b), sorted; a problem only
+    one of the two solved sits at the end of the scale, one neither solved is left out."""
+    from ._profiles import cost_matrix
+
+    plt = _plt()
+    t = cost_matrix(runs, "nfg")
+    paths: list[pathlib.Path] = []
+    for a, b in LOG_RATIO_PAIRS:
+        if a not in t.columns or b not in t.columns:
+            continue
+        ta, tb = t[a].to_numpy(), t[b].to_numpy()
+        keep = np.isfinite(ta) | np.isfinite(tb)
+        if not keep.any():
+            continue
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = np.log2(ta[keep] / tb[keep])
+        finite = r[np.isfinite(r)]
+        cap = max(1.0, float(np.max(np.abs(finite))) if finite.size else 1.0) * 1.1
+        r = np.sort(np.clip(np.nan_to_num(r, posinf=cap, neginf=-cap), -cap, cap))
+        fig, ax = plt.subplots(figsize=(7, 3.6))
+        ax.bar(np.arange(r.size), r, width=1.0, color=np.where(r < 0, "C0", "C3"))
+        ax.axhline(0, color="k", lw=0.6)
+        ax.set_xlabel(f"problems solved by {a} or {b} (sorted)")
+        ax.set_ylabel(f"log2(N^fg {a} / N^fg {b})")
+        ax.set_title(f"{suite}: {a} cheaper (below 0, {int((r < 0).sum())}) vs {b} cheaper "
+                     f"(above 0, {int((r > 0).sum())}); bars at ±{cap:.1f}: solved by one only", fontsize=9)
+        ax.grid(alpha=0.3, axis="y")
+        paths += _save(fig, outdir, f"log_ratio_{a}_vs_{b}")
+    return paths
+
+
 def _histories(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, problem: str | None,
                progress: TextIO | None = None) -> list[pathlib.Path]:
     plt = _plt()
@@ -174,7 +214,13 @@ def plot(suite: str, kind: str, out: str | os.PathLike[str] = "results", problem
     if kind not in KINDS:
         raise HarnessArgumentError(f"unknown plot kind {kind!r}; valid kinds: {', '.join(KINDS)}")
     runs = load_results(suite, out) if runs is None else runs
+    if suite in CAMPAIGN_SUITES:
+        from .tables._campaign import classify_runs
+
+        runs = runs.assign(success=(classify_runs(runs)["outcome"] == "solved").to_numpy())
     outdir = pathlib.Path(out) / suite / "figures"
+    if kind == "log-ratio":
+        return _log_ratios(suite, runs, outdir)
     if kind == "profile":
         return _profiles(suite, runs, outdir)
     if kind == "data-profile":

@@ -91,7 +91,7 @@ def _parser() -> argparse.ArgumentParser:
 
     pl = sub.add_parser("plot", help="figures from stored results (PNG and SVG)")
     _suite_args(pl)
-    pl.add_argument("--kind", required=True, choices=["profile", "data-profile", "history", "thesis"])
+    pl.add_argument("--kind", required=True, choices=["profile", "data-profile", "history", "thesis", "log-ratio"])
     pl.add_argument("--problem", help="problem id or case id (history plots; default: every case)")
     pl.add_argument("--out", default="results")
     pl.add_argument("--quiet", action="store_true", help="no progress lines")
