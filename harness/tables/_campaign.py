@@ -31,7 +31,8 @@ def reference_values(runs: pd.DataFrame) -> pd.DataFrame:
     for case, g in runs.groupby("case_id", sort=True):
         known = pd.to_numeric(g["f_ref"], errors="coerce")
         if np.isfinite(known).any():
-            out.append({"case_id": case, "ref": float(known[np.isfinite(known)].iloc[0]), "ref_source": "known optimum"})
+            ref = float(known[np.isfinite(known)].iloc[0])
+            out.append({"case_id": case, "ref": ref, "ref_source": "known optimum"})
             continue
         feas = g[(pd.to_numeric(g["max_violation"], errors="coerce") <= FEAS_TOL) & np.isfinite(g["f"])]
         out.append({"case_id": case, "ref": float(feas["f"].min()) if len(feas) else math.nan,
@@ -78,7 +79,8 @@ def _summary(df: pd.DataFrame, order: list[str]) -> Table:
         nfg_common = [v for v in nfg_common if v is not None]
         rows.append({
             "solver": lab, "problems": len(mine), "solved": int(out.get("solved", 0)),
-            "solved vs known optimum": int(((mine["outcome"] == "solved") & (mine["ref_source"] == "known optimum")).sum()),
+            "solved vs known optimum": int(((mine["outcome"] == "solved")
+                                            & (mine["ref_source"] == "known optimum")).sum()),
             "other point": int(out.get("other point", 0)), "infeasible end": int(out.get("infeasible", 0)),
             "cap": int(out.get("cap", 0)), "error": int(out.get("error", 0)), "timeout": int(out.get("timeout", 0)),
             "infrastructure": int(out.get("infrastructure", 0)),

@@ -75,7 +75,10 @@ def select(expr: str | None = None) -> pd.DataFrame:
                     rx = re.compile(value)
                 except re.error as exc:
                     raise SelectionError(f"bad regular expression in {term!r}: {exc}") from None
-                hit = cat["problem"].map(lambda s: bool(rx.search(s))) | cat["instance"].map(lambda s: bool(rx.search(s)))
+                def matches(name: str) -> bool:
+                    return bool(rx.search(name))
+
+                hit = cat["problem"].map(matches) | cat["instance"].map(matches)
             elif op in ("=", "!="):
                 names = {v.strip() for v in value.split("|") if v.strip()}
                 unknown = sorted(names - set(cat["problem"]) - set(cat["instance"]))
