@@ -116,6 +116,11 @@ def _parser() -> argparse.ArgumentParser:
                     help="E^r growing by more than this factor (above 1e-12) is a regression (default: off)")
     cp.add_argument("--all", action="store_true", help="list unchanged runs too")
 
+    ex = sub.add_parser("export", help="write a suite's runs as an OptiProfiler HDF5 archive (docs/cutest.md)")
+    ex.add_argument("--suite", required=True)
+    ex.add_argument("--out", default="results")
+    ex.add_argument("--to", required=True, help="path of the .h5 archive to write")
+
     b = sub.add_parser("baseline", help="save the deterministic counts of stored runs as a baseline")
     b.add_argument("--suite", required=True)
     b.add_argument("--out", default="results")
@@ -235,6 +240,14 @@ def _cmd_compare(a: argparse.Namespace) -> int:
     return EXIT_REGRESSIONS if len(res.regressions) else EXIT_OK
 
 
+def _cmd_export(a: argparse.Namespace) -> int:
+    from ._api import load_results
+    from ._optiprofiler import export_optiprofiler
+
+    print(export_optiprofiler(load_results(a.suite, a.out), a.to, plib=a.suite))
+    return EXIT_OK
+
+
 def _cmd_baseline(a: argparse.Namespace) -> int:
     from ._compare import save_baseline
 
@@ -243,7 +256,7 @@ def _cmd_baseline(a: argparse.Namespace) -> int:
 
 
 COMMANDS = {"run": _cmd_run, "table": _cmd_table, "list": _cmd_list, "plot": _cmd_plot,
-            "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline, "repair": _cmd_repair}
+            "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline, "export": _cmd_export, "repair": _cmd_repair}
 
 
 def _terminate_as_interrupt() -> object:

@@ -1,0 +1,43 @@
+"""The OptiProfiler export: histories expanded per evaluation, read back by OptiProfiler's own loader."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from harness._optiprofiler import export_optiprofiler, to_optiprofiler
+from harness._plan import HarnessArgumentError
+
+
+def _runs() -> pd.DataFrame:
+    hist = [[1, 10.0, 0.5], [3, 4.0, 0.0], [5, 1.0, 0.0]]
+    return pd.DataFrame([
+        {"case_id": "p1", "solver": "a", "n": 2, "nfg": 5, "f": 1.0, "max_violation": 0.0, "wall_time_s": 0.1,
+         "history": json.dumps(hist)},
+        {"case_id": "p1", "solver": "b", "n": 2, "nfg": 2, "f": 7.0, "max_violation": 0.2, "wall_time_s": 0.2,
+         "history": json.dumps([[1, 10.0, 0.5], [2, 7.0, 0.2]])},
+    ])
+
+
+def test_histories_are_per_evaluation_and_held():
+    r = to_optiprofiler(_runs())
+    assert r["solver_names"] == ["a", "b"]
+    assert r["fun_histories"].shape == (1, 2, 1, 5)
+    np.testing.assert_array_equal(r["fun_histories"][0, 0, 0], [10.0, 10.0, 4.0, 4.0, 1.0])
+    np.testing.assert_array_equal(r["maxcv_histories"][0, 1, 0], [0.5, 0.2, 0.2, 0.2, 0.2])
+    assert r["fun_inits"][0] == 10.0 and r["maxcv_inits"][0] == 0.5
+    np.testing.assert_array_equal(r["n_evals"][0, :, 0], [5, 2])
+
+
+def test_round_trip_through_optiprofilers_loader(tmp_path):
+    loader = pytest.importorskip("optiprofiler.loader")
+    path = export_optiprofiler(_runs(), tmp_path / "c.h5", plib="demo")
+    back = loader.load_results_from_h5(path)[0]
+    assert back["plib"] == "demo" and list(back["problem_names"]) == ["p1"]
+    np.testing.assert_array_equal(back["fun_outs"][0, :, 0], [1.0, 7.0])
+
+
+def test_no_runs_is_an_error():
+    with pytest.raises(HarnessArgumentError, match="no runs"):
+        to_optiprofiler(_runs().iloc[:0])
