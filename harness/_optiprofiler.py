@@ -22,7 +22,7 @@ from ._plan import HarnessArgumentError
 __all__ = ["to_optiprofiler", "export_optiprofiler"]
 
 
-def _expand(history_json: str, n_evals: int, length: int) -> tuple[np.ndarray, np.ndarray]:
+def _expand(history_json: str, length: int) -> tuple[np.ndarray, np.ndarray]:
     """Per-evaluation f and max-violation of one run, padded with its last value to `length`."""
     rows = np.asarray(json.loads(history_json) or [], dtype=float).reshape(-1, 3)
     fun = np.full(length, np.nan)
@@ -43,6 +43,12 @@ def to_optiprofiler(runs: pd.DataFrame, plib: str = "haybench") -> dict:
     """OptiProfiler's ``results_plib`` dictionary of a campaign's runs (one row per case and solver)."""
     if runs.empty:
         raise HarnessArgumentError("no runs to export")
+    # failed runs (error, time-out, lost worker) may carry no counts or history: zero evaluations
+    runs = runs.assign(nfg=pd.to_numeric(runs["nfg"], errors="coerce").fillna(0).astype(int),
+                       f=pd.to_numeric(runs["f"], errors="coerce").astype(float),
+                       max_violation=pd.to_numeric(runs["max_violation"], errors="coerce").astype(float),
+                       wall_time_s=pd.to_numeric(runs["wall_time_s"], errors="coerce").astype(float),
+                       history=runs["history"].fillna("[]"))
     solvers = sorted(runs["solver"].unique())
     cases = sorted(runs["case_id"].unique())
     length = max(1, int(runs["nfg"].max()))
@@ -60,7 +66,7 @@ def to_optiprofiler(runs: pd.DataFrame, plib: str = "haybench") -> dict:
     si = {s: j for j, s in enumerate(solvers)}
     for r in runs.itertuples(index=False):
         i, j = ci[r.case_id], si[r.solver]
-        fun_h[i, j, 0], cv_h[i, j, 0] = _expand(r.history, int(r.nfg), length)
+        fun_h[i, j, 0], cv_h[i, j, 0] = _expand(r.history, length)
         fun_out[i, j, 0] = r.f
         cv_out[i, j, 0] = r.max_violation
         n_evals[i, j, 0] = int(r.nfg)

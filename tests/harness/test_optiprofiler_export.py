@@ -38,6 +38,13 @@ def test_round_trip_through_optiprofilers_loader(tmp_path):
     np.testing.assert_array_equal(back["fun_outs"][0, :, 0], [1.0, 7.0])
 
 
+def test_a_failed_run_without_counts_has_no_evaluations():
+    runs = pd.concat([_runs(), pd.DataFrame([{"case_id": "p2", "solver": "a", "n": 3, "nfg": pd.NA, "f": None,
+                                              "max_violation": None, "wall_time_s": None, "history": None}])])
+    r = to_optiprofiler(runs)
+    assert r["n_evals"][1, 0, 0] == 0 and np.isnan(r["fun_histories"][1, 0, 0]).all()
+
+
 def test_no_runs_is_an_error():
     with pytest.raises(HarnessArgumentError, match="no runs"):
         to_optiprofiler(_runs().iloc[:0])
