@@ -19,7 +19,7 @@ import pandas as pd
 
 from ._plan import HarnessArgumentError
 
-__all__ = ["to_optiprofiler", "export_optiprofiler"]
+__all__ = ["export_optiprofiler", "to_optiprofiler"]
 
 
 def _expand(history_json: str, length: int) -> tuple[np.ndarray, np.ndarray]:
