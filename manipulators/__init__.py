@@ -11,3 +11,4 @@ from .workspace import Workspace as Workspace
 from .workspace import chord_boundary as chord_boundary
 from .cable import CableRobot as CableRobot
 from .spatial import SpatialCableRobot as SpatialCableRobot
+from .spatial import GoughStewart as GoughStewart

@@ -22,7 +22,7 @@ import numpy as np
 
 from ._distribution6 import VECTOR_METHODS, distribute6
 
-__all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "METHODS"]
+__all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "ray_boundary", "grid_points", "METHODS"]
 
 #: Tension methods: minimum-norm (6.14), constrained l2 (6.17, a QP), l1 (6.19).
 METHODS = ("l1", "l2", "min-norm")
@@ -89,6 +89,38 @@ def grid_points(box: Any, resolution: int) -> tuple[np.ndarray, np.ndarray]:
     axes = [b[0, d] + (np.arange(n) + 0.5) * (b[1, d] - b[0, d]) / n for d in range(3)]
     X, Y, Z = np.meshgrid(*axes, indexing="ij")
     return b, np.column_stack([X.ravel(), Y.ravel(), Z.ravel()])
+
+
+def ray_boundary(feasible: Any, centre: Any, directions: Any, reach: float, tol: float = 1e-9) -> np.ndarray:
+    """First feasibility change along rays from a feasible ``centre``, by bisection, all rays at once.
+
+    ``feasible`` maps points (k, 3) to (k,) bool. For each direction d (normalized) returns
+    centre + s d, s found by bisection on [0, reach] to ``tol`` (s = reach where the end of
+    the segment is feasible: the ray is then not cut within ``reach``). Exact for sets
+    that are star-shaped about the centre; otherwise some crossing on the ray.
+    """
+    c = np.asarray(centre, dtype=float)
+    D = np.atleast_2d(np.asarray(directions, dtype=float))
+    if c.shape != (3,) or D.shape[1] != 3 or not (np.all(np.isfinite(c)) and np.all(np.isfinite(D))):
+        raise ValueError("centre must be 3 finite coordinates and directions a finite (k, 3) array")
+    norms = np.linalg.norm(D, axis=1, keepdims=True)
+    if np.any(norms == 0):
+        raise ValueError("directions must be non-zero vectors")
+    D = D / norms
+    if not (np.isfinite(reach) and reach > 0):
+        raise ValueError(f"reach must be a positive length; got {reach}")
+    if not feasible(c[None])[0]:
+        raise ValueError(f"centre {c.tolist()} is not in the workspace")
+    lo, hi = np.zeros(len(D)), np.full(len(D), float(reach))
+    out = ~feasible(c + hi[:, None] * D)
+    lo[~out] = hi[~out]
+    while np.any(out & (hi - lo > tol)):
+        act = np.flatnonzero(out & (hi - lo > tol))
+        mid = 0.5 * (lo[act] + hi[act])
+        f = feasible(c + mid[:, None] * D[act])
+        lo[act[f]] = mid[f]
+        hi[act[~f]] = mid[~f]
+    return c + lo[:, None] * D
 
 
 @dataclasses.dataclass
@@ -199,21 +231,7 @@ class SpatialCableRobot:
         change found by bisection on [0, reach] to ``tol`` (s = reach where the whole ray
         segment is feasible). Assumes the feasible set is star-shaped about the centre.
         """
-        c = np.asarray(centre, dtype=float)
-        D = np.atleast_2d(np.asarray(directions, dtype=float))
-        D = D / np.linalg.norm(D, axis=1, keepdims=True)
-        if not self.feasible(c[None], rotation, wrench)[0]:
-            raise ValueError(f"centre {c.tolist()} is not wrench-feasible")
-        lo, hi = np.zeros(len(D)), np.full(len(D), float(reach))
-        out = ~self.feasible(c + hi[:, None] * D, rotation, wrench)
-        lo[~out] = hi[~out]
-        while np.any(out & (hi - lo > tol)):
-            act = np.flatnonzero(out & (hi - lo > tol))
-            mid = 0.5 * (lo[act] + hi[act])
-            f = self.feasible(c + mid[:, None] * D[act], rotation, wrench)
-            lo[act[f]] = mid[f]
-            hi[act[~f]] = mid[~f]
-        return c + lo[:, None] * D
+        return ray_boundary(lambda P: self.feasible(P, rotation, wrench), centre, directions, reach, tol)
 
     def __repr__(self) -> str:
         return f"SpatialCableRobot(m={self.m}, t_min={self.t_min}, t_max={self.t_max})"
