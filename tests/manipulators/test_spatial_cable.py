@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from scipy.optimize import linprog
 
 from manipulators import SpatialCableRobot
+from manipulators.spatial import distribute6
 
 CORNERS = np.array(list(itertools.product((-1.0, 1.0), repeat=3)))
 W = np.array([0.0, 0.0, -10.0, 0.5, -0.3, 0.2])
@@ -31,25 +32,39 @@ def lp_l1(S, w, t_min, t_max):
 
 
 def check_random_poses(n_poses: int, seed: int) -> int:
+    """Random robots (m = 7..12), 50 random poses and loads each: the vectorized l1 path
+    (all 50 poses in one call) against one independent LP per pose."""
     rng = np.random.default_rng(seed)
     n_feasible = 0
     for _ in range(n_poses // 50):
         m = int(rng.integers(7, 13))
         robot = random_robot(rng, m)
-        for _ in range(50):
-            p = rng.uniform(-0.8, 0.8, 3)
-            ang = rng.uniform(-0.3, 0.3, 3)
-            w = W * rng.uniform(0.2, 3.0)
-            S = robot.structure_matrix(p, ang)
-            t = robot.tensions(p, ang, w)
-            ok_lp, f_lp = lp_l1(S, w, robot.t_min, robot.t_max)
-            assert (t is not None) == ok_lp, (m, p, ang)
-            if t is not None:
+        P = rng.uniform(-0.8, 0.8, (50, 3))
+        A = rng.uniform(-0.3, 0.3, (50, 3))
+        Wk = W * rng.uniform(0.2, 3.0, (50, 1))
+        S = np.stack([robot.structure_matrix(p, a) for p, a in zip(P, A)])
+        feas, T = distribute6(S, Wk, robot.t_min, robot.t_max)
+        for Si, wi, fi, ti in zip(S, Wk, feas, T):
+            ok_lp, f_lp = lp_l1(Si, wi, robot.t_min, robot.t_max)
+            assert fi == ok_lp, m
+            if fi:
                 n_feasible += 1
-                assert np.abs(S @ t + w).max() <= 1e-9
-                assert np.all(t >= robot.t_min) and np.all(t <= robot.t_max)
-                assert abs(t.sum() - f_lp) <= 1e-8 * max(1.0, abs(f_lp))
+                assert np.abs(Si @ ti + wi).max() <= 1e-9
+                assert np.all(ti >= robot.t_min) and np.all(ti <= robot.t_max)
+                assert abs(ti.sum() - f_lp) <= 1e-8 * max(1.0, abs(f_lp))
     return n_feasible
+
+
+def test_public_tensions_is_the_vector_path():
+    rng = np.random.default_rng(4)
+    robot = random_robot(rng, 9)
+    for _ in range(10):
+        p, a = rng.uniform(-0.5, 0.5, 3), rng.uniform(-0.2, 0.2, 3)
+        t = robot.tensions(p, a, W)
+        feas, T = distribute6(robot.structure_matrix(p, a)[None], W, robot.t_min, robot.t_max)
+        assert (t is not None) == feas[0]
+        if t is not None:
+            np.testing.assert_array_equal(t, T[0])
 
 
 def test_l1_tensions_match_lp_small_sample():
@@ -138,8 +153,6 @@ def test_equilibrium_property(seed, m, scale):
     robot = random_robot(rng, m)
     P = rng.uniform(-0.8, 0.8, (20, 3))
     ang = rng.uniform(-0.3, 0.3, 3)
-    from manipulators.spatial import distribute6
-
     S = robot.structure_matrices(P, ang)
     feas, T = distribute6(S, W * scale, robot.t_min, robot.t_max)
     for Si, ti in zip(S[feas], T[feas]):
