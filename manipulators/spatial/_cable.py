@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ._distribution6 import VECTOR_METHODS, distribute6
+from ._distribution6 import distribute6
 
 __all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "ray_boundary", "grid_points", "METHODS"]
 

@@ -206,6 +206,6 @@ def distribute6(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, method
         tp, N, full = null_space_form(S[s:s + step], w[s:s + step])
         f, T = _l1_search(tp, N, full, t_min, t_max, tol, need_tensions)
         feas[s:s + step] = f
-        if need_tensions:
+        if out is not None:
             out[s:s + step] = T
     return feas, out
