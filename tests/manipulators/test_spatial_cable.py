@@ -158,3 +158,25 @@ def test_equilibrium_property(seed, m, scale):
     for Si, ti in zip(S[feas], T[feas]):
         assert np.abs(Si @ ti + W * scale).max() <= 1e-9
         assert np.all((ti >= robot.t_min) & (ti <= robot.t_max))
+
+
+def test_min_norm_tensions():
+    """-S^+ w (6.14), returned only when it meets the bounds."""
+    rng = np.random.default_rng(11)
+    robot = random_robot(rng, 8)
+    for _ in range(20):
+        p = rng.uniform(-0.8, 0.8, 3)
+        S = robot.structure_matrix(p, np.zeros(3))
+        w = -S @ rng.uniform(20, 60, 8)
+        t_ref = -np.linalg.pinv(S) @ w
+        t = robot.tensions(p, np.zeros(3), w, method="min-norm")
+        inside = bool(np.all((t_ref >= robot.t_min - 1e-10) & (t_ref <= robot.t_max + 1e-10)))
+        assert (t is not None) == inside
+    # a structure whose row space holds the all-ones vector: S^T 1 = 1, so t^mn = 30 * 1
+    S = np.hstack([np.eye(6), np.zeros((6, 2))])
+    S[0, 6] = S[1, 7] = 1.0  # cables 7 and 8 repeat the directions of cables 1 and 2
+    w = -S @ np.full(8, 30.0)
+    feas, T = distribute6(S[None], w, 1.0, 100.0, method="min-norm")
+    assert feas[0]
+    np.testing.assert_allclose(T[0], -np.linalg.pinv(S) @ w, atol=1e-12)
+    np.testing.assert_allclose(T[0], 30.0, atol=1e-12)
