@@ -64,7 +64,7 @@ def environment() -> dict[str, Any]:
 
 
 def now() -> str:
-    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    return _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
 
 
 def record_session(root: pathlib.Path, session: dict[str, Any]) -> pathlib.Path:

@@ -25,7 +25,7 @@ __all__ = ["SuiteRef", "load_suite", "suite_module", "SuiteFileError"]
 class SuiteFileError(ImportError):
     """A user's suite file could not be imported (it raised): a bad-input error, in one line."""
 
-_CACHE: dict["SuiteRef", Suite] = {}
+_CACHE: dict[SuiteRef, Suite] = {}
 _FILE_MODULES: dict[str, ModuleType] = {}
 
 
@@ -60,7 +60,7 @@ def _file_module(path: str) -> ModuleType:
     sys.modules[modname] = module  # dataclasses and pickling look modules up here
     try:
         spec.loader.exec_module(module)
-    except Exception as exc:  # the user's code failed: say where, in one line
+    except Exception as exc:  # noqa: BLE001 - the user's code failed: say where, in one line
         del sys.modules[modname]
         tb = [f for f in traceback.extract_tb(exc.__traceback__) if f.filename == str(p)]
         where = f" (line {tb[-1].lineno})" if tb else ""

@@ -26,7 +26,13 @@ from scipy.optimize import least_squares, minimize
 
 from .workspace import Workspace, chord_boundary
 
-__all__ = ["constant_orientation_workspace", "dextrous_workspace", "maximal_workspace", "interior_point", "EmptyWorkspace"]
+__all__ = [
+    "constant_orientation_workspace",
+    "dextrous_workspace",
+    "maximal_workspace",
+    "interior_point",
+    "EmptyWorkspace",
+]
 
 
 class EmptyWorkspace(ValueError):
@@ -64,9 +70,17 @@ def interior_point(C, lo, hi, *, n: int = 64, refine: bool = True):
     k = int(np.argmax(margin))
     u, best = U[k], float(margin[k])
     if refine:
-        res = minimize(lambda x: float(np.max(C(x[None, :]))), u, method="Nelder-Mead",
-                       options={"xatol": 1e-9, "fatol": 1e-12, "maxiter": 400,
-                                "initial_simplex": np.array([u, u + [(hi[0] - lo[0]) / n, 0], u + [0, (hi[1] - lo[1]) / n]])})
+        res = minimize(
+            lambda x: float(np.max(C(x[None, :]))),
+            u,
+            method="Nelder-Mead",
+            options={
+                "xatol": 1e-9,
+                "fatol": 1e-12,
+                "maxiter": 400,
+                "initial_simplex": np.array([u, u + [(hi[0] - lo[0]) / n, 0], u + [0, (hi[1] - lo[1]) / n]]),
+            },
+        )
         if -res.fun > best:
             u, best = res.x, float(-res.fun)
     return np.asarray(u, dtype=float), best
@@ -78,7 +92,9 @@ def _with_info(ws: Workspace, **extra) -> Workspace:
     return dataclasses.replace(ws, info={**dict(ws.info), **extra})
 
 
-def constant_orientation_workspace(m, phi: float, chord: float, *, branch="upper", interior=None, **chord_kw) -> Workspace:
+def constant_orientation_workspace(
+    m, phi: float, chord: float, *, branch="upper", interior=None, **chord_kw
+) -> Workspace:
     """``W^C[phi]`` of design ``m`` (eq. 5.14) by the chord method (Section 5.4.2)."""
     t0 = time.perf_counter()
     phi = float(phi)
@@ -91,8 +107,10 @@ def constant_orientation_workspace(m, phi: float, chord: float, *, branch="upper
             lo[1] = max(lo[1], m.yC)
         interior, margin = interior_point(C, lo, hi)
         if interior is None or margin <= 0:
-            raise EmptyWorkspace(f"3-RPR design {m.design.tolist()} has an empty constant-orientation workspace at phi={phi}"
-                                 f" (largest margin {margin:.3g})")
+            raise EmptyWorkspace(
+                f"3-RPR design {m.design.tolist()} has an empty constant-orientation workspace at phi={phi}"
+                f" (largest margin {margin:.3g})"
+            )
     ws = chord_boundary(C, interior, chord, **chord_kw)
     return _with_info(ws, kind="constant-orientation", phi=phi, interior=np.asarray(interior),
                       time_total=time.perf_counter() - t0, constraint_names=_co_names(branch))
@@ -206,7 +224,9 @@ def _orientation_tag(j, constraints, branch, orientation_method="closed"):
             return "interior"
         return "branch"
     if orientation_method == "closed":
-        return {0: "phi_max", 1: "phi_max", 2: "phi_max", 3: "phi_min", 4: "phi_min", 5: "phi_min"}.get(int(j), "branch")
+        return {0: "phi_max", 1: "phi_max", 2: "phi_max", 3: "phi_min", 4: "phi_min", 5: "phi_min"}.get(
+            int(j), "branch"
+        )
     return {0: "phi_max", 1: "phi_min"}.get(int(j), "branch")
 
 

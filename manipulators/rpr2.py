@@ -225,7 +225,7 @@ class RPR2:
         # a trace is redone at half the chord, up to `REFINE` times [OWN: Appendix C
         # assumes d small against the workspace's features].
         d = float(chord)
-        for k in range(REFINE):
+        for _ in range(REFINE):
             if ws.info.get("closed") and ws.n_boundary >= 3 and bool(ws.contains(u0[None, :])[0]):
                 break
             d *= 0.5

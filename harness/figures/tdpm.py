@@ -149,9 +149,11 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
     matplotlib.use("Agg")
     outdir = pathlib.Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = [fig_6_3(outdir),
-             _grid_of_workspaces(3, "grid", outdir, "fig_6_4", "Fig. 6.4: 3-cable TDPM, discretization method (m = 50)"),
-             _grid_of_workspaces(4, "grid", outdir, "fig_6_5", "Fig. 6.5: 4-cable TDPM, discretization method (m = 50)"),
-             _grid_of_workspaces(3, "chord", outdir, "fig_6_8", "Fig. 6.8: 3-cable TDPM, chord method"),
-             _grid_of_workspaces(4, "chord", outdir, "fig_6_9", "Fig. 6.9: 4-cable TDPM, chord method")]
+    paths = [
+        fig_6_3(outdir),
+        _grid_of_workspaces(3, "grid", outdir, "fig_6_4", "Fig. 6.4: 3-cable TDPM, discretization method (m = 50)"),
+        _grid_of_workspaces(4, "grid", outdir, "fig_6_5", "Fig. 6.5: 4-cable TDPM, discretization method (m = 50)"),
+        _grid_of_workspaces(3, "chord", outdir, "fig_6_8", "Fig. 6.8: 3-cable TDPM, chord method"),
+        _grid_of_workspaces(4, "chord", outdir, "fig_6_9", "Fig. 6.9: 4-cable TDPM, chord method"),
+    ]
     return paths + _synthesis_figs(runs, outdir)

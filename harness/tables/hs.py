@@ -49,14 +49,15 @@ SOLVER_ORDER = ("dynamic-q", "lfopc", "etopc", "scipy-slsqp", "nlopt-slsqp", "sc
 
 # Known reasons for differences, by problem (cited in the notes when the problem is listed).
 REASONS = {
-    "hs002": "two minima: the global one (x1 > 0) and the local one f = 4.9412 (x1 < 0) that the thesis's Dynamic-Q found",
+    "hs002": "two minima: the global one (x1 > 0) and the local one f = 4.9412 (x1 < 0) "
+    "that the thesis's Dynamic-Q found",
     "hs013": "degenerate (LICQ fails at x* = (1, 0)); a violation of 1e-12..1e-8 buys a lower f, so the count depends "
-             "on how a method treats near-feasible points (the thesis's Dynamic-Q hit its step cap here)",
+    "on how a method treats near-feasible points (the thesis's Dynamic-Q hit its step cap here)",
     "hs055": "rank-deficient equalities: SLSQP's least-squares subproblem is sensitive to rounding here (measured: "
-             "46 evaluations with a multithreaded BLAS, 148 with one BLAS thread); local minimum 20/3 at the other "
-             "end of the feasible segment",
+    "46 evaluations with a multithreaded BLAS, 148 with one BLAS thread); local minimum 20/3 at the other "
+    "end of the feasible segment",
     "hs106": "badly scaled (x up to 1e4); the thesis's step limit for 106 is our reading rho = 100. The thesis's "
-             "E^r = 1.18e-5 is against the HS book's 7049.33, which is not optimal (f_act here = 7049.248)",
+    "E^r = 1.18e-5 is against the HS book's 7049.33, which is not optimal (f_act here = 7049.248)",
     "hs072": "step limit rho = 100 by our reading of the garbled Sec. 3.4 sentence",
 }
 
@@ -195,7 +196,9 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                 if ratio > RATIO_NOTE or ratio < 1 / RATIO_NOTE:
                     differs = True
                     why = REASONS.get(pid, "")
-                    outcome = f" (ours '{mark or 'solved'}', thesis '{t['flag'] or 'solved'}')" if mark != t["flag"] else ""
+                    outcome = (
+                        f" (ours '{mark or 'solved'}', thesis '{t['flag'] or 'solved'}')" if mark != t["flag"] else ""
+                    )
                     ratio_notes.append(f"HS{int(pid[2:])}, {s} vs {THESIS_METHODS[ref_m]}: N^fg {nfg} vs "
                                        f"{int(t['nfg'])} ({ratio:.2f}x){outcome}" + (f" - {why}" if why else ""))
             flag.update({f"{s} N^fg": differs, f"{s} f*": False, f"{s} E^r": mark not in ("", "*")})

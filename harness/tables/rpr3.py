@@ -60,12 +60,17 @@ def dextrous_table(chord: float = 0.02, ranges=DEXTROUS_RANGES) -> Table:
                          "n_bif": ws.bifurcations.shape[0],
                          "types": f"{types.count('I')} I, {types.count('II')} II", "area": round(ws.area, 5),
                          "time_s": round(dt, 3), "note": "" if ws.info.get("closed") else "not closed"})
-    return Table("table_5_2", "Table 5.2 (ours; missing from the thesis's text): dextrous workspaces of M1-M3, "
-                 f"chord d = {chord}", pd.DataFrame(rows),
-                 notes=["Algorithm 5.1 with the closed-form orientation constraints (RPR3.dextrous_constraints); "
-                        "n_b counts boundary points including bifurcation points.",
-                        "time_s: wall time per workspace in Python on this machine (thesis: FORTRAN, 1.6 GHz Pentium 4).",
-                        "The ranges plotted in Figs. 5.4-5.6 are not stated in the text; these are our choice."])
+    return Table(
+        "table_5_2",
+        f"Table 5.2 (ours; missing from the thesis's text): dextrous workspaces of M1-M3, chord d = {chord}",
+        pd.DataFrame(rows),
+        notes=[
+            "Algorithm 5.1 with the closed-form orientation constraints (RPR3.dextrous_constraints); "
+            "n_b counts boundary points including bifurcation points.",
+            "time_s: wall time per workspace in Python on this machine (thesis: FORTRAN, 1.6 GHz Pentium 4).",
+            "The ranges plotted in Figs. 5.4-5.6 are not stated in the text; these are our choice.",
+        ],
+    )
 
 
 def _history_ng(history: str) -> int:
@@ -168,19 +173,29 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
             fstar = ev.get("kinv", float("nan"))
             enclosed = bool(ev.get("enclosed", False))
             win, miss = _window(kind, x if ok else None, pname)
-            rows.append({
-                "P": pname, "solver": r["solver"], "status": r["status"], "N^fg": count_cell(r["nfg"]), "N^f": count_cell(r["nf"]),
-                "f(d0)": round(f0, 4), "f*": round(fstar, 4), "g*": float(f"{ev.get('g', float('nan')):.2g}"),
-                "d*": "[" + ", ".join(f"{v:.4g}" for v in x) + "]" if ok else "",
-                "exact dW_p/W_p": float(f"{ev.get('ratio', float('nan')):.2g}"),
-                "enclosed": enclosed,
-                "leg excess": float(f"{ev.get('max_leg_violation', float('nan')):.2g}"),
-                "phi window (deg)": win,
-                "f* (thesis)": th.get("f_star"), "f(d0) (thesis)": th.get("f_d0"), "N^g (thesis)": th.get("ng"),
-                "g* (thesis)": th.get("g_star"),
-                "d* (thesis)": "[" + ", ".join(f"{v:.4g}" for v in th["d_star"]) + "]" if "d_star" in th else "",
-                "time_s": round(float(r["wall_time_s"]), 1),
-            })
+            rows.append(
+                {
+                    "P": pname,
+                    "solver": r["solver"],
+                    "status": r["status"],
+                    "N^fg": count_cell(r["nfg"]),
+                    "N^f": count_cell(r["nf"]),
+                    "f(d0)": round(f0, 4),
+                    "f*": round(fstar, 4),
+                    "g*": float(f"{ev.get('g', float('nan')):.2g}"),
+                    "d*": "[" + ", ".join(f"{v:.4g}" for v in x) + "]" if ok else "",
+                    "exact dW_p/W_p": float(f"{ev.get('ratio', float('nan')):.2g}"),
+                    "enclosed": enclosed,
+                    "leg excess": float(f"{ev.get('max_leg_violation', float('nan')):.2g}"),
+                    "phi window (deg)": win,
+                    "f* (thesis)": th.get("f_star"),
+                    "f(d0) (thesis)": th.get("f_d0"),
+                    "N^g (thesis)": th.get("ng"),
+                    "g* (thesis)": th.get("g_star"),
+                    "d* (thesis)": "[" + ", ".join(f"{v:.4g}" for v in th["d_star"]) + "]" if "d_star" in th else "",
+                    "time_s": round(float(r["wall_time_s"]), 1),
+                }
+            )
             low = th.get("f_star") is not None and not (fstar >= th["f_star"] - F_TOL)
             flags.append({k: False for k in rows[-1]} | {"f*": bool(low), "enclosed": not enclosed,
                                                           "phi window (deg)": bool(miss and ok)})

@@ -76,7 +76,10 @@ def published() -> dict[tuple[int, str], list[dict[str, Any]]]:
     out: dict[tuple[int, str], list[dict[str, Any]]] = {}
     for r in thesis_table("table_6_5_to_6_10_tdpm_synthesis").itertuples():
         n = int(r.cables)
-        vec = lambda p: [float(getattr(r, f"{p}_beta{i}")) for i in range(1, n + 1)]  # noqa: E731
+
+        def vec(p: str, r: Any = r, n: int = n) -> list[float]:
+            return [float(getattr(r, f"{p}_beta{i}")) for i in range(1, n + 1)]
+
         out.setdefault((n, r.load), []).append(dict(
             table=r.table, run=int(r.run), ng=int(r.ng), d0=vec("d0"), A_d0=float(r.A_d0),
             dstar=vec("dstar"), A_dstar=float(r.A_dstar)))

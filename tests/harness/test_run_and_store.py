@@ -101,7 +101,9 @@ def test_cli_run_table_list(tiny_file, tmp_path, capsys):
 
 
 def test_table_without_plugin_or_results(tmp_path, capsys):
-    assert main(["table", "--suite", "appendix-a", "--out", str(tmp_path)]) == 2  # nothing stored where asked: bad input
+    assert (
+        main(["table", "--suite", "appendix-a", "--out", str(tmp_path)]) == 2
+    )  # nothing stored where asked: bad input
     assert "no results" in capsys.readouterr().err
 
 

@@ -1,8 +1,8 @@
 """2-RPR kinematics (Section 4.3, Appendix D): Jacobian (4.22) and kappa^-1 (4.23)."""
 
 import numpy as np
-import shapely
 import pytest
+import shapely
 
 from manipulators import RPR2
 from manipulators.rpr2 import inverse_condition

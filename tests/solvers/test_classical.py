@@ -2,9 +2,9 @@
 
 import pytest
 
-from problems.reference import thesis_table
 from problems import Oracle, Problem
 from problems.appendix_a import make_case
+from problems.reference import thesis_table
 from solvers import get_solver_class, solve
 from solvers.classical import FletcherReeves, MoreThuenteSearch, PolakRibiere, SteepestDescent
 
