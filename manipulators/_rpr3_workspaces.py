@@ -100,7 +100,7 @@ def constant_orientation_workspace(
     phi = float(phi)
     if not np.isfinite(phi):
         raise ValueError(f"phi must be finite (radians), got {phi}")
-    C = lambda U: m.constraints(U, phi, branch=branch)  # noqa: E731
+    C = lambda U: m.constraints(U, phi, branch=branch)
     if interior is None:
         lo, hi = _bbox_of_legs(m, phi)
         if branch == "upper":
@@ -173,7 +173,7 @@ def dextrous_workspace(m, phi_min: float, phi_max: float, chord: float, *, branc
     if not (np.isfinite(phi_min) and np.isfinite(phi_max) and phi_min <= phi_max):
         raise ValueError(f"need finite phi_min <= phi_max (radians), got [{phi_min}, {phi_max}]")
     if constraints == "legs":
-        C = lambda U: m.dextrous_constraints(U, phi_min, phi_max, branch=branch)  # noqa: E731
+        C = lambda U: m.dextrous_constraints(U, phi_min, phi_max, branch=branch)
         names = _dex_names(branch)
     elif constraints == "orientation":
         def C(U):
@@ -202,7 +202,7 @@ def dextrous_workspace(m, phi_min: float, phi_max: float, chord: float, *, branc
         lo, hi = _bbox_of_legs(m, [phi_min, w_mid, phi_max])
         if branch == "upper":
             lo[1] = max(lo[1], m.yC)
-        Cl = lambda U: m.dextrous_constraints(U, phi_min, phi_max, branch=branch)  # noqa: E731
+        Cl = lambda U: m.dextrous_constraints(U, phi_min, phi_max, branch=branch)
         interior, margin = interior_point(Cl, lo, hi)
         if interior is None or margin <= 0:
             raise EmptyWorkspace(f"3-RPR design {m.design.tolist()} has an empty dextrous workspace over "
@@ -254,7 +254,7 @@ def maximal_workspace(m, chord: float, *, interior=None, **chord_kw) -> Workspac
     traced (no branch restriction: the orientation is free).
     """
     t0 = time.perf_counter()
-    C = lambda U: m.maximal_constraints(U)  # noqa: E731
+    C = lambda U: m.maximal_constraints(U)
     if interior is None:
         interior, _ = assembled_point(m)
         if not float(C(interior[None, :])[0, 0]) < 0:

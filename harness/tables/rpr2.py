@@ -156,7 +156,7 @@ def _span(vals, fmt=".2f") -> str:
 def _e_reading(minima: list, pols: dict) -> str:
     """The note reading the exact polish of the Dynamic-Q d* (ours and the thesis's) against
     the exact problem's local minima ``(f, d, count)``."""
-    get = lambda keys, k: [float(pols[q].get(k, math.nan)) for q in keys if q in pols]  # noqa: E731
+    get = lambda keys, k: [float(pols[q].get(k, math.nan)) for q in keys if q in pols]
     desc = [f"f = {fm:.4f} at y_A = {dm[1]:.3g}, x_B - x_A = {abs(dm[2] - dm[0]):.3g}" for fm, dm, _ in minima]
     text = f"Reading: the exact problem has {len(minima)} local minima found ({'; '.join(desc)})."
     from manipulators.prescribed import P1

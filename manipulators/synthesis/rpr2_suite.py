@@ -286,7 +286,7 @@ def exact_polish(d0, prescribed: Prescribed | str = "P1", k: int = EXACT_K, box:
 
     f, cons = exact_e_problem(prescribed, k)
     d0 = np.asarray(d0, dtype=float)
-    viol = lambda d: float(max(0.0, -cons(d)[0].min()))  # noqa: E731
+    viol = lambda d: float(max(0.0, -cons(d)[0].min()))
     proj = minimize(lambda d: float((d - d0) @ (d - d0)), d0, jac=lambda d: 2 * (d - d0), method="SLSQP",
                     constraints=[{"type": "ineq", "fun": lambda d: cons(d)[0], "jac": lambda d: cons(d)[1]}],
                     options={"maxiter": 200, "ftol": 1e-14}).x
