@@ -77,7 +77,7 @@ class RPR2:
     l_max: tuple[float, float] = (7.0, 7.0)
 
     def __post_init__(self) -> None:
-        set_ = lambda k, v: object.__setattr__(self, k, v)
+        set_ = lambda k, v: object.__setattr__(self, k, v)  # the dataclass is frozen
         for k in ("xA", "yA", "xB"):
             v = float(getattr(self, k))
             if not np.isfinite(v):

@@ -57,7 +57,7 @@ class Workspace:
     info: Mapping[str, Any] = dataclasses.field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        set_ = lambda k, v: object.__setattr__(self, k, v)
+        set_ = lambda k, v: object.__setattr__(self, k, v)  # the dataclass is frozen
         b = (
             np.zeros((0, 2))
             if self.boundary is None or np.size(self.boundary) == 0
