@@ -69,7 +69,7 @@ def save_baseline(suite: str, out: str | os.PathLike[str] = "results",
 
 def _same(a: object, b: object) -> bool:
     """Equal, where two missing values (runs without counts) are equal too."""
-    na, nb = bool(pd.isna(a)), bool(pd.isna(b))  # type: ignore[call-overload]
+    na, nb = bool(pd.isna(a)), bool(pd.isna(b))
     return na and nb or (not na and not nb and a == b)
 
 

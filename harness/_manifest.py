@@ -41,7 +41,7 @@ def _git(*args: str) -> str | None:
 
 def environment() -> dict[str, Any]:
     """Versions, git state and machine of this process."""
-    versions = {}
+    versions: dict[str, str | None] = {}
     for p in PACKAGES:
         try:
             versions[p] = importlib.metadata.version(p)

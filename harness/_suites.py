@@ -11,6 +11,7 @@ import dataclasses
 import hashlib
 import importlib
 import importlib.util
+import os
 import pathlib
 import re
 import sys
@@ -105,7 +106,7 @@ def load_suite(ref: SuiteRef) -> Suite:
     return suite
 
 
-def ref_for(name: str | None = None, file: str | pathlib.Path | None = None) -> SuiteRef:
+def ref_for(name: str | None = None, file: str | os.PathLike[str] | None = None) -> SuiteRef:
     """A `SuiteRef` from a catalogue name or a file path (the file's suite name is read)."""
     if file is not None:
         path = str(pathlib.Path(file).resolve())

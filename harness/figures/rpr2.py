@@ -131,7 +131,7 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
                            f"Figs. 4.12(b)/4.13: {name}, optimal workspace, kappa^-1"))
 
     # Convergence histories: Figs. 4.5-4.8 (O per start), 4.11 (E), 4.14 (P)
-    groups = [("rpr2-o", sp, f"4_{5 + i}") for i, sp in enumerate(STARTS)]
+    groups: list[tuple[str, str | None, str]] = [("rpr2-o", sp, f"4_{5 + i}") for i, sp in enumerate(STARTS)]
     groups += [
         ("rpr2-e", None, "4_11"),
         ("rpr2-p1", None, "4_14a"),

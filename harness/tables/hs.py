@@ -156,7 +156,8 @@ def tables(runs: pd.DataFrame) -> list[Table]:
         pids = [p for p in thesis if p != "svanberg"]
     by_key = {(r["problem"], r["solver"]): r for r in runs.to_dict("records")} if not runs.empty else {}
 
-    rows, flags, per_solver = [], [], {s: [] for s in solvers}
+    rows, flags = [], []
+    per_solver: dict[str, list[dict[str, Any]]] = {s: [] for s in solvers}
     ratio_notes: list[str] = []
     for pid in pids:
         th = thesis.get(pid, {})
@@ -170,8 +171,8 @@ def tables(runs: pd.DataFrame) -> list[Table]:
             if t is None:
                 row.update({f"{label} N^fg": "", f"{label} f*": "", f"{label} E^r": ""})
             else:
-                nfg = "" if not math.isfinite(t["nfg"]) else f"{int(t['nfg'])}"
-                row[f"{label} N^fg"] = nfg + t["flag"]
+                nfg_th = "" if not math.isfinite(t["nfg"]) else f"{int(t['nfg'])}"
+                row[f"{label} N^fg"] = nfg_th + t["flag"]
                 row[f"{label} f*"] = _fmt(t["f_star"], ".3g") if math.isfinite(t["f_star"]) else t["flag"]
                 row[f"{label} E^r"] = ("<" if t["lt"] else "") + _fmt(t["er"], ".2e")
             flag.update({f"{label} N^fg": False, f"{label} f*": False, f"{label} E^r": False})
@@ -199,7 +200,7 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                     outcome = (
                         f" (ours '{mark or 'solved'}', thesis '{t['flag'] or 'solved'}')" if mark != t["flag"] else ""
                     )
-                    ratio_notes.append(f"HS{int(pid[2:])}, {s} vs {THESIS_METHODS[ref_m]}: N^fg {nfg} vs "
+                    ratio_notes.append(f"HS{int(pid[2:])}, {s} vs {THESIS_METHODS[str(ref_m)]}: N^fg {nfg} vs "
                                        f"{int(t['nfg'])} ({ratio:.2f}x){outcome}" + (f" - {why}" if why else ""))
             flag.update({f"{s} N^fg": differs, f"{s} f*": False, f"{s} E^r": mark not in ("", "*")})
         rows.append(row)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -78,7 +79,8 @@ def _ours(runs: pd.DataFrame, problem: str, start: str) -> pd.DataFrame:
 
 
 def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
-    rows, flags = [], []
+    rows: list[dict[str, Any]] = []
+    flags: list[bool] = []
     th = thesis[thesis["start"] == start]
     for _, t in th.iterrows():  # the thesis's rows, recomputed exactly
         d = [float(t[c]) for c in ("x_A", "y_A", "x_B", "l1_min", "l2_min")]
@@ -164,7 +166,7 @@ def _e_reading(minima: list, pols: dict) -> str:
     if minima and abs(minima[0][1][1] - float(P1.points(4096)[:, 1].min())) < 1e-6:
         text += (" The lowest puts the base line through W_p's lowest point (W_p touches the singular line "
                  "y = y_A, kappa^-1 = 0 there): none of the thesis's or our runs reaches it.")
-    reached = {}
+    reached: dict[str, Any] = {}
     for q, pol in pols.items():
         near = [m for m in minima if abs(m[0] - float(pol.get("f", math.nan))) < 1e-4]
         reached.setdefault(f"{near[0][0]:.4f}" if near else "elsewhere", []).append(q)
@@ -187,7 +189,8 @@ def _e_reading(minima: list, pols: dict) -> str:
 
 def _e_dq_summary(runs: pd.DataFrame, thesis: pd.DataFrame) -> str:
     """Which starts Dynamic-Q reproduces (f* within E_REL, exact dW_p <= 0.01), with base widths."""
-    good, bad = [], []
+    good: list[str] = []
+    bad: list[str] = []
     for _, t in thesis.iterrows():
         r = _ours(runs, "rpr2-e", t["start"])
         r = r[r["solver"] == "dynamic-q"]
@@ -216,7 +219,8 @@ def _compromises(row) -> str:
 def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
     from manipulators.synthesis.rpr2_suite import exact_optimum
 
-    rows, flags = [], []
+    rows: list[dict[str, Any]] = []
+    flags: list[bool] = []
     opt = exact_optimum("e")  # the exact model's minima: no chord method, analytic area (4.14)
     for i, (f_m, d_m, count) in enumerate(opt["minima"]):
         ev = _evaluate("e", d_m)
@@ -328,7 +332,8 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
 
 
 def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
-    rows, flags = [], []
+    rows: list[dict[str, Any]] = []
+    flags: list[bool] = []
     for _, t in thesis.iterrows():
         P = t["workspace"]
         d = [float(t[c]) for c in ("x_A", "y_A", "x_B")]

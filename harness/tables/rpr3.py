@@ -15,6 +15,7 @@ orientations of d* (`rpr3_suite.enclosing_window`) missing the ones the synthesi
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import time
@@ -129,7 +130,7 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
         best_ok = _best_enclosed(kind, pname, sub)
         # what the exact model allows (independent of the chord formulation); computed once per code version
         opt = memo("rpr3-exact-optimum", ("manipulators.synthesis.rpr3_suite",), (kind, pname, n_starts),
-                   lambda k=kind, p=pname: exact_optimum(k, p, n_starts=n_starts))
+                   functools.partial(exact_optimum, kind, pname, n_starts=n_starts))
         win, miss = _window(kind, opt["d"], pname)
         rows.append({
             "P": pname, "solver": "(exact-model optimum)", "status": "", "N^fg": None, "N^f": None,

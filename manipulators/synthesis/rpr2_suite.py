@@ -55,7 +55,7 @@ P_LIMITS = ((4.0, 4.0), (7.0, 7.0))  # l_i^min = 4, l_i^max = 7 (Section 4.7.3)
 LMAX_RATIO = 1.5  # l_i^max = 1.5 l_i^min (Section 4.5.2)
 
 # Settings stated in the text (problems/reference/thesis_tables/run_settings.csv):
-SETTINGS = {
+SETTINGS: dict[str, dict[str, Any]] = {
     "o": dict(chord=0.5, fd="forward", fd_step=1e-5, eps_f=1e-6, eps_x=1e-4, eps_g=1e-3, rho=0.2),  # 4.5.2
     # 4.6.2: chord 0.1, Gamma 1e-3, eps_f 1e-6, eps_x 1e-4; difference scheme and rho not
     # stated -> forward (as in 4.5.2) and rho = 0.2 (as in 4.5.2 and 4.7.3) [OWN]

@@ -38,7 +38,7 @@ from ..cable import BETA_MIN, design_robot, loads
 __all__ = ["SUITE", "SETTINGS", "separations", "dextrous_area", "tdpm_problem", "random_starts",
            "published"]
 
-SETTINGS = {
+SETTINGS: dict[int, dict[str, Any]] = {
     3: dict(phi=(-0.1, 0.1), resolution=100, slices=3, fd_step=0.05),
     4: dict(phi=(-0.2, 0.2), resolution=50, slices=21, fd_step=0.1),
 }
@@ -64,7 +64,7 @@ def dextrous_area(d: np.ndarray, load: str) -> float:
         raise ValueError(f"design angles must be finite, got {d}")
     s = SETTINGS[d.size]
     robot = design_robot(d)
-    return robot.dextrous_workspace(*s["phi"], loads()[load], resolution=s["resolution"],
+    return robot.dextrous_workspace(s["phi"][0], s["phi"][1], loads()[load], resolution=s["resolution"],
                                     slices=s["slices"], tensions="l1").area
 
 
