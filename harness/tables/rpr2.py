@@ -53,6 +53,13 @@ def _decoded(runs: pd.DataFrame | None) -> pd.DataFrame:
     return runs
 
 
+def _area_wp() -> float:
+    """area(W_p) of P1, the prescribed workspace of the O and E problems (Sec. 4.5-4.6)."""
+    from manipulators.prescribed import P1
+
+    return P1.area()
+
+
 def _evaluate(kind, x, prescribed="P1"):
     from manipulators.synthesis.rpr2_suite import evaluate
 
@@ -130,7 +137,8 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
             f"Flagged: a thesis algorithm of ours ending above {O_LIMIT} (the tolerance of docs/manipulators.md). "
             f"{verdict} "
             "ETOPC is a reconstruction (Sec. 4.4 gives no details).",
-            "SLSQP and Ipopt ending at 2.483 = area(W_p)/2 stepped to a design with an empty workspace "
+            f"SLSQP and Ipopt ending at {_area_wp() / 2:.3f} = area(W_p)/2 stepped to a design with an empty "
+            "workspace "
             "(dW_c = 0, dW_p = area(W_p)), a flat region where every difference gradient is 0.",
             "Complex [84] is the literature value of Gosselin and Guillot.",
             "N^g counts gradient evaluations (forward differences, Gamma = 1e-5); N^fg distinct points.",
@@ -323,7 +331,8 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
             "'compromise P[i]': Dynamic-Q subproblems with no point meeting their approximate constraints "
             "within the move limit, where LFOPC returns its least-infeasible compromise and the step reduces "
             "the model of h, not f (solvers.dynamic_q, n_compromise_subproblems).",
-            "Ipopt steps to a design with an empty workspace (h = dW_p = area(W_p) = 4.966, constant there) "
+            "Ipopt steps to a design with an empty workspace "
+            f"(h = dW_p = area(W_p) = {_area_wp():.3f}, constant there) "
             "and reports a locally infeasible problem.",
             "How far Dynamic-Q's ends move when a start moves by 1e-6 (O and E): Table 4.7s, suite "
             "rpr2-spread (python -m harness run --suite rpr2-spread).",
