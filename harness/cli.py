@@ -257,7 +257,8 @@ def _cmd_baseline(a: argparse.Namespace) -> int:
 
 
 COMMANDS = {"run": _cmd_run, "table": _cmd_table, "list": _cmd_list, "plot": _cmd_plot,
-            "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline, "export": _cmd_export, "repair": _cmd_repair}
+            "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline,
+            "export": _cmd_export, "repair": _cmd_repair}
 
 
 def _terminate_as_interrupt() -> object:
