@@ -15,7 +15,6 @@ orientations of d* (`rpr3_suite.enclosing_window`) missing the ones the synthesi
 
 from __future__ import annotations
 
-import json
 import math
 import time
 
@@ -66,13 +65,6 @@ def dextrous_table(chord: float = 0.02, ranges=DEXTROUS_RANGES) -> Table:
                         "n_b counts boundary points including bifurcation points.",
                         "time_s: wall time per workspace in Python on this machine (thesis: FORTRAN, 1.6 GHz Pentium 4).",
                         "The ranges plotted in Figs. 5.4-5.6 are not stated in the text; these are our choice."])
-
-
-def _history_ng(history: str) -> int:
-    try:
-        return len(json.loads(history))
-    except Exception:  # noqa: BLE001
-        return 0
 
 
 def _best_enclosed(kind: str, pname: str, sub: pd.DataFrame) -> float | None:
