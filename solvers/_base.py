@@ -11,7 +11,7 @@ import dataclasses
 import math
 import numbers
 from collections.abc import Callable
-from typing import Any, ClassVar
+from typing import Any, ClassVar, final
 
 from problems import Oracle, Problem
 
@@ -107,13 +107,6 @@ def _type_ok(annotation: Any, value: Any) -> tuple[bool, str]:
     return True, ""
 
 
-def final(cls: type) -> type:
-    """Mark a concrete solver class final: `AbstractSolver.__init_subclass__` refuses subclasses of it."""
-    cls.__solver_final__ = True  # type: ignore[attr-defined]
-    cls.__final__ = True  # type: ignore[attr-defined]  # what typing.final sets
-    return cls
-
-
 class AbstractSolver(abc.ABC):
     """Base of all solvers.
 
@@ -133,7 +126,7 @@ class AbstractSolver(abc.ABC):
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         for base in cls.__mro__[1:]:
-            if base.__dict__.get("__solver_final__"):
+            if base.__dict__.get("__final__"):  # set by typing.final
                 raise TypeError(f"solver class {base.__name__} is final; compose it (hold an instance) "
                                 f"instead of subclassing it")
 
