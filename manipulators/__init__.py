@@ -10,3 +10,5 @@ from .prescribed import get_prescribed as get_prescribed
 from .workspace import Workspace as Workspace
 from .workspace import chord_boundary as chord_boundary
 from .cable import CableRobot as CableRobot
+from .spatial import SpatialCableRobot as SpatialCableRobot
+from .spatial import GoughStewart as GoughStewart
