@@ -25,7 +25,8 @@ def list_solvers(verbose: bool = True) -> Iterator[str]:
         if verbose:
             for o in cls.options():
                 src = f"  [{o['source']}]" if o["source"] else ""
-                yield f"    {o['name']} = {o['default']!r}: {o['doc']}{src}"
+                chk = f"  (valid: {o['check']})" if o.get("check") else ""
+                yield f"    {o['name']} = {o['default']!r}: {o['doc']}{chk}{src}"
 
 
 def list_suites() -> Iterator[str]:

@@ -73,12 +73,14 @@ class Oracle:
         # LFOPC), kept up to a memory cap so the history can be completed outside the count
         self._unfilled: dict[int, np.ndarray] = {}
         self._unfilled_cap = max(0, HISTORY_POINT_BUDGET // max(problem.n, 1))
+        # the problem is frozen: its structure is read once, not on every evaluation
+        self._n, self._has_bounds = problem.n, problem.has_bounds
         self.last_x: np.ndarray = problem.x0.copy()
 
     # ------------------------------------------------------------------ structure
     @property
     def n(self) -> int:
-        return self.problem.n
+        return self._n
 
     @property
     def x0(self) -> np.ndarray:
@@ -102,7 +104,7 @@ class Oracle:
 
     @property
     def has_bounds(self) -> bool:
-        return self.problem.has_bounds
+        return self._has_bounds
 
     @property
     def name(self) -> str:

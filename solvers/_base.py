@@ -8,22 +8,103 @@ from __future__ import annotations
 
 import abc
 import dataclasses
-from typing import Any, ClassVar
+import math
+import numbers
+from collections.abc import Callable
+from typing import Any, ClassVar, final
 
 from problems import Oracle, Problem
 
 from ._result import SolverOutput
 
-__all__ = ["AbstractSolver", "option", "NotApplicable"]
+__all__ = ["AbstractSolver", "option", "Check", "NotApplicable", "positive", "nonneg", "at_least", "between",
+           "one_of", "final"]
 
 
 class NotApplicable(ValueError):
     """The solver cannot handle this problem's form (e.g. constraints for SQSD)."""
 
 
-def option(default: Any, doc: str, source: str = "") -> Any:
-    """A solver option: its default, its meaning and where it comes from in the thesis."""
-    return dataclasses.field(default=default, metadata={"doc": doc, "source": source})
+@dataclasses.dataclass(frozen=True)
+class Check:
+    """A declarative test of one option value: ``test(value)`` and the text saying what is valid."""
+
+    test: Callable[[Any], bool]
+    text: str
+
+    def __call__(self, value: Any) -> bool:
+        try:
+            return bool(self.test(value))
+        except TypeError:
+            return False
+
+
+def positive(finite: bool = True) -> Check:
+    """value > 0 (and finite unless ``finite=False``)."""
+    if finite:
+        return Check(lambda v: v > 0 and math.isfinite(v), "a finite number > 0")
+    return Check(lambda v: v > 0, "a number > 0")
+
+
+def nonneg(finite: bool = False) -> Check:
+    """value >= 0 (and finite if ``finite``)."""
+    if finite:
+        return Check(lambda v: v >= 0 and math.isfinite(v), "a finite number >= 0")
+    return Check(lambda v: v >= 0, "a number >= 0")
+
+
+def at_least(lo: float, or_none: bool = False) -> Check:
+    """value >= lo (None also allowed if ``or_none``)."""
+    if or_none:
+        return Check(lambda v: v is None or v >= lo, f">= {lo} or None")
+    return Check(lambda v: v >= lo, f">= {lo}")
+
+
+def between(lo: float, hi: float, closed: str = "") -> Check:
+    """lo < value < hi; ``closed`` may hold "lo" and/or "hi" to include that end."""
+    lo_ok: Callable[[Any], bool] = (lambda v: v >= lo) if "lo" in closed else (lambda v: v > lo)
+    hi_ok: Callable[[Any], bool] = (lambda v: v <= hi) if "hi" in closed else (lambda v: v < hi)
+    text = ("[" if "lo" in closed else "(") + f"{lo}, {hi}" + ("]" if "hi" in closed else ")")
+    return Check(lambda v: lo_ok(v) and hi_ok(v), f"in {text}")
+
+
+def one_of(*values: Any) -> Check:
+    """value is one of ``values``."""
+    return Check(lambda v: v in values, "one of " + ", ".join(repr(v) for v in values))
+
+
+def option(default: Any, doc: str, source: str = "", check: Check | None = None) -> Any:
+    """A solver option: its default, meaning, thesis provenance and (optionally) the check of its value.
+
+    Every option is checked once, when the solver is built (`AbstractSolver.__post_init__`): its
+    type against the field's annotation (float, int, bool, str, optionally ``| None``) and then
+    ``check``.
+    """
+    return dataclasses.field(default=default, metadata={"doc": doc, "source": source, "check": check})
+
+
+def _type_ok(annotation: Any, value: Any) -> tuple[bool, str]:
+    """Whether ``value`` fits a simple annotation; (True, "") for annotations we do not check."""
+    text = annotation if isinstance(annotation, str) else getattr(annotation, "__name__", str(annotation))
+    parts = [t.strip() for t in text.split("|")]
+    if "None" in parts:
+        if value is None:
+            return True, ""
+        parts.remove("None")
+    if len(parts) != 1:
+        return True, ""
+    kind = parts[0]
+    if kind == "bool":
+        return isinstance(value, bool) or type(value).__name__ == "bool_", "a bool"
+    if kind == "float":
+        return isinstance(value, numbers.Real) and not isinstance(value, bool), "a number"
+    if kind == "int":
+        ok = isinstance(value, numbers.Integral) and not isinstance(value, bool)
+        ok = ok or (isinstance(value, float) and value.is_integer())  # e.g. max_steps=1e4 from a spec
+        return ok, "an integer"
+    if kind == "str":
+        return isinstance(value, str), "a string"
+    return True, ""
 
 
 class AbstractSolver(abc.ABC):
@@ -41,6 +122,37 @@ class AbstractSolver(abc.ABC):
     summary: ClassVar[str]
     handles: ClassVar[frozenset[str]] = frozenset()
     family: ClassVar[str] = "established"
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        for base in cls.__mro__[1:]:
+            if base.__dict__.get("__final__"):  # set by typing.final
+                raise TypeError(f"solver class {base.__name__} is final; compose it (hold an instance) "
+                                f"instead of subclassing it")
+
+    def __post_init__(self) -> None:
+        """Check every option once: its type (from the annotation), its `Check`, then `check_together`."""
+        for f in dataclasses.fields(self):  # type: ignore[arg-type]
+            value = getattr(self, f.name)
+            ok, kind = _type_ok(f.type, value)
+            check: Check | None = f.metadata.get("check")
+            if ok and (check is None or check(value)):
+                continue
+            valid = " and ".join(t for t in (kind if not ok else "", check.text if check else "") if t)
+            raise ValueError(f"{self.name}: option {f.name}={value!r} is invalid; valid: {valid or kind}")
+        self.check_together()
+
+    def check_together(self) -> None:  # noqa: B027 - an optional hook, not an abstract method
+        """Checks relating several options (e.g. mu0 <= mu1); raise ValueError. Default: none."""
+
+    @classmethod
+    def check_option_names(cls, names: Any) -> None:
+        """ValueError naming the solver, the unknown option names and the valid ones."""
+        valid = [f.name for f in dataclasses.fields(cls)]  # type: ignore[arg-type]
+        unknown = sorted(set(names) - set(valid))
+        if unknown:
+            raise ValueError(f"unknown option(s) {', '.join(unknown)} for solver {cls.name!r}; valid options: "
+                             f"{', '.join(valid) or '(none)'}")
 
     def can_solve(self, problem: Problem) -> str | None:
         """None if the solver applies to ``problem``, else the reason it does not."""
@@ -61,8 +173,9 @@ class AbstractSolver(abc.ABC):
             default = f.default if f.default is not dataclasses.MISSING else (
                 f.default_factory() if f.default_factory is not dataclasses.MISSING else None  # type: ignore[misc]
             )
+            check = f.metadata.get("check")
             rows.append({"name": f.name, "default": default, "doc": f.metadata.get("doc", ""),
-                         "source": f.metadata.get("source", "")})
+                         "source": f.metadata.get("source", ""), "check": check.text if check else ""})
         return rows
 
     def settings(self) -> dict[str, Any]:

@@ -90,16 +90,11 @@ def make_solver(spec: str | AbstractSolver, **options: Any) -> AbstractSolver:
         if options:
             import dataclasses
 
+            type(spec).check_option_names(options)
             return dataclasses.replace(spec, **options)  # type: ignore[type-var]
         return spec
     name, spec_opts = parse_spec(spec)
     cls = get_solver_class(name)
     opts = {**spec_opts, **options}
-    valid = [o["name"] for o in cls.options()]
-    unknown = sorted(set(opts) - set(valid))
-    if unknown:
-        raise ValueError(
-            f"unknown option(s) {', '.join(unknown)} for solver {name!r}; valid options: "
-            f"{', '.join(valid) or '(none)'}"
-        )
+    cls.check_option_names(opts)
     return cls(**opts)

@@ -30,7 +30,7 @@ from scipy.optimize._dcsrch import dcstep  # MINPACK-2 safeguarded cubic/quadrat
 
 from problems import Oracle
 
-from ._base import AbstractSolver, option
+from ._base import AbstractSolver, at_least, final, nonneg, option
 from ._result import SolverOutput, Status
 
 __all__ = ["AbstractCGPlus", "SteepestDescent", "FletcherReeves", "PolakRibiere", "MoreThuenteSearch"]
@@ -150,33 +150,24 @@ class AbstractCGPlus(AbstractSolver):
     handles = frozenset()
     beta_rule: ClassVar[str]
 
-    eps_g: float = option(1e-5, "stop when ||grad f|| < eps_g", "Alg. 2.1 step 1, Sec. 2.5")
-    eps_x: float = option(1e-8, "stop when ||x^k - x^(k-1)|| < eps_x", "Alg. 2.1 step 3, Sec. 2.5")
-    max_iter: int = option(100_000, "cap on N^it (line searches)", "Tables 2.1-2.2 ('> N' rows)")
+    eps_g: float = option(1e-5, "stop when ||grad f|| < eps_g", "Alg. 2.1 step 1, Sec. 2.5", check=nonneg())
+    eps_x: float = option(1e-8, "stop when ||x^k - x^(k-1)|| < eps_x", "Alg. 2.1 step 3, Sec. 2.5", check=nonneg())
+    max_iter: int = option(100_000, "cap on N^it (line searches)", "Tables 2.1-2.2 ('> N' rows)", check=at_least(1))
     max_fg: int | None = option(None, "cap on N^fg (checked before each line search); None = no cap",
-                                "Tables 2.1-2.2 print '> N' in the N^fg column")
+                                "Tables 2.1-2.2 print '> N' in the N^fg column", check=at_least(1, or_none=True))
     ftol: float = option(1e-4, "sufficient-decrease parameter of the line search", "CG+ CGFAM (FTOL)")
     gtol: float = option(0.1, "curvature parameter of the line search", "CG+ CGFAM (GTOL)")
-    xtol: float = option(1e-17, "relative interval tolerance of the line search", "CG+ CGFAM (XTOL)")
+    xtol: float = option(1e-17, "relative interval tolerance of the line search", "CG+ CGFAM (XTOL)", check=nonneg())
     stpmin: float = option(1e-20, "smallest line-search step", "CG+ CGFAM (STPMIN)")
     stpmax: float = option(1e20, "largest line-search step", "CG+ CGFAM (STPMAX)")
-    maxfev: int = option(40, "trials per line search", "CG+ CGFAM (MAXFEV)")
+    maxfev: int = option(40, "trials per line search", "CG+ CGFAM (MAXFEV)", check=at_least(2))
     restart: bool = option(False, "restart with steepest descent every n iterations", "CG+ IREST = 1")
 
-    def __post_init__(self) -> None:
-        nm = self.name
-        if self.eps_g < 0 or self.eps_x < 0:
-            raise ValueError(f"{nm}: eps_g and eps_x must be >= 0")
-        if self.max_iter < 1:
-            raise ValueError(f"{nm}: max_iter must be >= 1, got {self.max_iter}")
-        if self.max_fg is not None and self.max_fg < 1:
-            raise ValueError(f"{nm}: max_fg must be >= 1 or None, got {self.max_fg}")
+    def check_together(self) -> None:
         if not 0 < self.ftol < self.gtol < 1:
-            raise ValueError(f"{nm}: need 0 < ftol < gtol < 1, got ftol={self.ftol}, gtol={self.gtol}")
-        if not (0 <= self.xtol and 0 < self.stpmin < self.stpmax):
-            raise ValueError(f"{nm}: need xtol >= 0 and 0 < stpmin < stpmax")
-        if self.maxfev < 2:
-            raise ValueError(f"{nm}: maxfev must be >= 2 (CG+ accepts a step after two trials)")
+            raise ValueError(f"{self.name}: need 0 < ftol < gtol < 1, got ftol={self.ftol}, gtol={self.gtol}")
+        if not 0 < self.stpmin < self.stpmax:
+            raise ValueError(f"{self.name}: need 0 < stpmin < stpmax, got {self.stpmin}, {self.stpmax}")
 
     def _beta(self, betafr: float, betapr: float) -> float:
         raise NotImplementedError
@@ -253,6 +244,7 @@ class AbstractCGPlus(AbstractSolver):
                 return SolverOutput(x, Status.CONVERGED, "||x^k - x^(k-1)|| < eps_x", nit=it)
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class SteepestDescent(AbstractCGPlus):
     """Steepest descent with the CG+ line search (thesis Sec. 2.5, Alg. 2.1)."""
@@ -265,6 +257,7 @@ class SteepestDescent(AbstractCGPlus):
         return 0.0
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class FletcherReeves(AbstractCGPlus):
     """Fletcher-Reeves conjugate gradients as in CG+ (method 1)."""
@@ -277,6 +270,7 @@ class FletcherReeves(AbstractCGPlus):
         return betafr
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class PolakRibiere(AbstractCGPlus):
     """Polak-Ribiere conjugate gradients as in CG+ (method 2; ``positive=True``: PR+, method 3)."""

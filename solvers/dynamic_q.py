@@ -16,7 +16,7 @@ import numpy as np
 
 from problems import Oracle
 
-from ._base import AbstractSolver, option
+from ._base import AbstractSolver, at_least, final, nonneg, one_of, option, positive
 from ._result import SolverOutput, Status
 from ._spherical import SphericalSubproblem, two_point_curvature
 from .lfopc import LFOPC
@@ -37,6 +37,7 @@ def _finite(ev: dict[str, Any]) -> bool:
     )
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class DynamicQ(AbstractSolver):
     """The Dynamic-Q method, Algorithm 3.2 with termination (3.10)/(3.11).
@@ -54,67 +55,50 @@ class DynamicQ(AbstractSolver):
     family = "thesis"
     handles = frozenset({"bounds", "ineq", "eq"})
 
-    rho: float = option(1.0, "move limit (radius of the sphere (3.8))", "Sec. 3.4: rho = 1 for Table 3.1 [THESIS]")
-    eps_f: float = option(1e-8, "normalized change of f from the best feasible f (3.11)", "Sec. 3.4 [THESIS]")
-    eps_x: float = option(1e-5, "normalized step size (3.10)", "Sec. 3.4 [THESIS]")
-    eps_c: float = option(1e-6, "feasibility: every constraint violation < eps_c", "Sec. 3.4 [THESIS]")
+    rho: float = option(1.0, "move limit (radius of the sphere (3.8))", "Sec. 3.4: rho = 1 for Table 3.1 [THESIS]",
+                        check=positive())
+    eps_f: float = option(1e-8, "normalized change of f from the best feasible f (3.11)", "Sec. 3.4 [THESIS]",
+                          check=nonneg())
+    eps_x: float = option(1e-5, "normalized step size (3.10)", "Sec. 3.4 [THESIS]", check=nonneg())
+    eps_c: float = option(1e-6, "feasibility: every constraint violation < eps_c", "Sec. 3.4 [THESIS]", check=nonneg())
     step_stop_feasible: bool = option(True, "accept the step test (3.10) only at a feasible iterate "
                                       "(every violation < eps_c); False: (3.10) alone, as printed",
                                       "[OWN] (a 'converged' infeasible point is useless; affects e.g. HS106)")
     nonfinite_backtrack: int = option(5, "if f, g or h is non-finite at a new iterate, halve the step back "
                                       "towards x^(i-1) up to this many times (each is an oracle point)",
-                                      "[OWN] (robustness on design problems with undefined regions)")
+                                      "[OWN] (robustness on design problems with undefined regions)", check=at_least(0))
     max_iter: int = option(100, "maximum number of outer iterations (subproblems)",
-                           "[OWN] (thesis: 'a maximum number of iterations', no value; HS13 ends on it at N^fg = 50)")
+                           "[OWN] (thesis: 'a maximum number of iterations', no value; HS13 ends on it at N^fg = 50)",
+                           check=at_least(1))
     subsolver: LFOPC = option(LFOPC(max_steps=2000), "LFOPC instance solving the subproblems (its delta is "
                               "replaced by sub_delta * rho); default: thesis LFOPC with a 2000-step cap per phase",
                               "Alg. 3.2 step 3 [THESIS]; App. B; step cap [OWN]")
     sub_delta: float = option(1.0, "LFOP step limit inside P[i] as a multiple of rho",
-                              "[OWN] algorithms.md 4.3 (delta = rho; textbook delta = 1 is scale-blind)")
+                              "[OWN] algorithms.md 4.3 (delta = rho; textbook delta = 1 is scale-blind)",
+                              check=positive())
     curvature_clip: str = option("none", "'none' (3.6 as is), 'sqsd' (a < 0 -> 1e-60), "
-                                 "'saoi' (a >= 1e-5, b_j >= 0)", "[OWN]; [SAOi] diaHess_sq1s; Alg. 2.2")
+                                 "'saoi' (a >= 1e-5, b_j >= 0)", "[OWN]; [SAOi] diaHess_sq1s; Alg. 2.2",
+                                 check=one_of(*CLIPS))
     move_centre: str = option("current", "'current' (x^c = x^i) or 'literal' (x^c = x^{i-1}, x^0 for i = 0)",
-                              "eq. (3.8) text; resolution [OWN] algorithms.md 4.2")
+                              "eq. (3.8) text; resolution [OWN] algorithms.md 4.2", check=one_of(*CENTRES))
     rho_reduction: bool = option(False, "halve rho when feasible f rises above f_best or steps reverse",
                                  "[OWN] algorithms.md 4.5 (off reproduces the thesis)")
     normalize_constraints: str = option("unit", "scale the approximate constraints of P[i] by 1/||grad|| at x^i: "
                                         "'unit' always, 'cap' only where ||grad|| > 1 (penalty stiffness at most "
                                         "~2 mu), 'none' (as printed); the move limit likewise by 1/(2 rho)",
-                                        "[OWN] (same feasible set; keeps LFOPC's phase 1 within its step cap)")
+                                        "[OWN] (same feasible set; keeps LFOPC's phase 1 within its step cap)",
+                                        check=one_of(*NORMALIZE))
     clip_to_bounds: bool = option(True, "project the subproblem solution onto the exact bounds (3.7)",
                                   "[OWN]: the bounds are exact, LFOPC's penalty leaves ~1e-9 excess")
     on_cap: str = option("best", "point returned when max_iter ends the run: 'best' = the best feasible "
                          "iterate (the least infeasible one if none is feasible), 'last' = the last iterate",
                          "[OWN]: the thesis is silent on the cap; its '$' runs report no point. 'last' is "
                          "the literal reading of Alg. 3.2; 'best' keeps a run that cycles near the optimum "
-                         "from returning a worse point")
+                         "from returning a worse point", check=one_of("best", "last"))
 
-    def __post_init__(self) -> None:
-        for k in ("rho", "sub_delta"):
-            v = getattr(self, k)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise ValueError(f"dynamic-q: {k} must be a positive finite number, got {v!r}")
-        for k in ("eps_f", "eps_x", "eps_c"):
-            v = getattr(self, k)
-            if not (isinstance(v, (int, float)) and v >= 0):
-                raise ValueError(f"dynamic-q: {k} must be >= 0, got {v!r}")
-        if not (isinstance(self.max_iter, (int, np.integer)) and self.max_iter >= 1):
-            raise ValueError(f"dynamic-q: max_iter must be an integer >= 1, got {self.max_iter!r}")
-        if not (isinstance(self.nonfinite_backtrack, (int, np.integer)) and self.nonfinite_backtrack >= 0):
-            raise ValueError(
-                f"dynamic-q: nonfinite_backtrack must be an integer >= 0, got {self.nonfinite_backtrack!r}"
-            )
+    def check_together(self) -> None:
         if not isinstance(self.subsolver, LFOPC):
             raise ValueError(f"dynamic-q: subsolver must be an LFOPC instance, got {type(self.subsolver).__name__}")
-        if self.normalize_constraints not in NORMALIZE:
-            raise ValueError(f"dynamic-q: normalize_constraints must be one of {NORMALIZE}, "
-                             f"got {self.normalize_constraints!r}")
-        if self.curvature_clip not in CLIPS:
-            raise ValueError(f"dynamic-q: curvature_clip must be one of {CLIPS}, got {self.curvature_clip!r}")
-        if self.move_centre not in CENTRES:
-            raise ValueError(f"dynamic-q: move_centre must be one of {CENTRES}, got {self.move_centre!r}")
-        if self.on_cap not in ("best", "last"):
-            raise ValueError(f"dynamic-q: on_cap must be 'best' or 'last', got {self.on_cap!r}")
 
     # ------------------------------------------------------------------ helpers
     def _clip(self, a: float, b: np.ndarray) -> tuple[float, np.ndarray]:

@@ -18,17 +18,18 @@ import numpy as np
 
 from problems import Oracle
 
-from ._base import AbstractSolver, option
-from ._penalty import OracleForm, PenaltyForm, ThreePhaseResult, three_phase
+from ._base import AbstractSolver, at_least, between, final, nonneg, one_of, option, positive
+from ._penalty import PenaltyForm, ThreePhaseResult
+from ._penalty_phases import PenaltyPhases, phases_output
 from ._result import SolverOutput
 from .etop import EtopParams, etop
-from .lfopc import _output
 
 __all__ = ["ETOPC"]
 
 
+@final
 @dataclasses.dataclass(frozen=True)
-class ETOPC(AbstractSolver):
+class ETOPC(PenaltyPhases, AbstractSolver):
     """ETOPC-recon: PR conjugate gradients, gradient-only Euler-trapezium steps, three-phase penalty.
 
     A documented reconstruction (thesis Section 4.4 gives only the idea); see
@@ -40,36 +41,20 @@ class ETOPC(AbstractSolver):
     family = "thesis"
     handles = frozenset({"bounds", "ineq", "eq"})
 
-    mu0: float = option(1e2, "phase-0 penalty parameter", "App. B.4 [THESIS] (by analogy with LFOPC [OWN])")
-    mu1: float = option(1e4, "phase-1/2 penalty parameter", "App. B.4 [THESIS] (by analogy with LFOPC [OWN])")
-    phase2_exterior: bool = option(True, "keep the exterior penalty on inactive inequalities in phase 2 "
-                                   "(False: eq. B.7 literally)", "[OWN] (B.7 lets phase 2 run away on "
-                                   "non-convex subproblems, e.g. Dynamic-Q on HS23)")
-    scale_constraints: bool = option(False, "in minimize(oracle): penalty weight alpha_j = mu/||grad g_j(x0)||^2 "
-                                     "per constraint (walls of equal stiffness) instead of one mu",
-                                     "eq. (B.6) allows alpha_j, beta_k per constraint [THESIS]; choice [OWN]")
-    phase2_tol: float = option(1e-10, "phase 2 also ends when every active constraint satisfies |g_j|, |h_k| <= "
-                               "phase2_tol (0 = gradient test only)", "[OWN] (Q_a's minimum is 0; at degenerate "
-                               "intersections, e.g. the cusp of HS13, its gradient test takes thousands of steps)")
-    active_tol: float = option(0.0, "g_j(x*(mu1)) > active_tol marks constraint j active for phase 2", "[OWN]")
-    beta: str = option("PR", "'PR' (Polak-Ribiere+, used in the thesis) or 'FR'", "Sec. 4.4 [THESIS]; PR+ [OWN]")
-    eps_g: float = option(1e-5, "per-phase stop: ||grad Q|| <= eps_g", "[OWN] (Ch. 4 used 1e-3)")
-    eps_x: float = option(1e-8, "per-phase stop: accepted step shorter than eps_x", "[OWN]")
-    h0: float = option(1.0, "first trial step length", "[OWN]")
-    gamma: float = option(2.0, "growth of the Euler trial steps", "[OWN]")
-    max_line: int = option(20, "gradients per line search", "[OWN]")
-    eta: float = option(0.1, "accept the step when |phi| <= eta |phi(0)|", "[OWN]")
-    max_steps: int = option(10_000, "per-phase cap on gradient evaluations", "[OWN]")
-    max_step: float = option(math.inf, "largest step along one direction", "[OWN]")
+    beta: str = option("PR", "'PR' (Polak-Ribiere+, used in the thesis) or 'FR'", "Sec. 4.4 [THESIS]; PR+ [OWN]",
+                       check=one_of("PR", "FR"))
+    eps_g: float = option(1e-5, "per-phase stop: ||grad Q|| <= eps_g", "[OWN] (Ch. 4 used 1e-3)", check=nonneg())
+    eps_x: float = option(1e-8, "per-phase stop: accepted step shorter than eps_x", "[OWN]", check=nonneg())
+    h0: float = option(1.0, "first trial step length", "[OWN]", check=positive())
+    gamma: float = option(2.0, "growth of the Euler trial steps", "[OWN]", check=at_least(1))
+    max_line: int = option(20, "gradients per line search", "[OWN]", check=at_least(2))
+    eta: float = option(0.1, "accept the step when |phi| <= eta |phi(0)|", "[OWN]", check=between(0, 1))
+    max_steps: int = option(10_000, "per-phase cap on gradient evaluations", "[OWN]", check=at_least(1))
+    max_step: float = option(math.inf, "largest step along one direction", "[OWN]", check=positive(finite=False))
 
-    def __post_init__(self) -> None:
-        if not (np.isfinite(self.mu0) and np.isfinite(self.mu1) and 0 < self.mu0 <= self.mu1):
-            raise ValueError(f"etopc: need 0 < mu0 <= mu1 < inf, got mu0={self.mu0}, mu1={self.mu1}")
-        if not (self.phase2_tol >= 0):
-            raise ValueError(f"etopc: phase2_tol must be >= 0, got {self.phase2_tol}")
-        if not (self.active_tol >= 0):
-            raise ValueError(f"etopc: active_tol must be >= 0, got {self.active_tol}")
-        self.etop_params()
+    def check_together(self) -> None:
+        self._check_mu(self.name)
+        self.etop_params()  # EtopParams's own checks (the function API's front door)
 
     def etop_params(self) -> EtopParams:
         return EtopParams(beta=self.beta, eps_g=self.eps_g, eps_x=self.eps_x, h0=self.h0, gamma=self.gamma,
@@ -78,16 +63,9 @@ class ETOPC(AbstractSolver):
     def solve_form(self, form: PenaltyForm, x0: np.ndarray) -> ThreePhaseResult:
         """Run the three phases on a penalty form from ``x0``."""
         params = self.etop_params()
-        return three_phase(form, x0, lambda grad, x, **kw: etop(grad, x, params, **kw), self.mu0, self.mu1,
-                           self.active_tol, phase2_exterior=self.phase2_exterior, phase2_tol=self.phase2_tol)
-
-    def _oracle_form(self, oracle: Oracle) -> OracleForm:
-        form = OracleForm(oracle)
-        if self.scale_constraints:
-            form.scale_by_gradients(oracle.x0)
-        return form
+        return self._three_phase(form, x0, lambda grad, x, **kw: etop(grad, x, params, **kw))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
-        out = _output(self.solve_form(self._oracle_form(oracle), oracle.x0), self.max_steps)
+        out = phases_output(self.solve_form(self._oracle_form(oracle), oracle.x0), self.max_steps)
         out.extra["reconstruction"] = "ETOPC-recon (algorithms.md section 5)"
         return out

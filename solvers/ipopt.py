@@ -25,7 +25,7 @@ import numpy as np
 
 from problems import BudgetExhausted, Oracle, Problem
 
-from ._base import AbstractSolver, option
+from ._base import AbstractSolver, at_least, final, nonneg, one_of, option, positive
 from ._result import SolverOutput, Status
 
 __all__ = ["Ipopt"]
@@ -136,6 +136,7 @@ def _hessian_function(problem: Problem) -> ca.Function:
     return fun
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class Ipopt(AbstractSolver):
     """Interior-point filter line-search method (Ipopt) via ``casadi.nlpsol``."""
@@ -169,25 +170,15 @@ class Ipopt(AbstractSolver):
         "NonIpopt_Exception_Thrown": Status.ERROR,
     }
 
-    tol: float = option(1e-8, "Ipopt 'tol': scaled NLP error (KKT) tolerance", "Ipopt default 1e-8")
-    max_iter: int = option(3000, "Ipopt iteration cap", "Ipopt default 3000")
+    tol: float = option(1e-8, "Ipopt 'tol': scaled NLP error (KKT) tolerance", "Ipopt default 1e-8", check=positive())
+    max_iter: int = option(3000, "Ipopt iteration cap", "Ipopt default 3000", check=at_least(1))
     hessian: str = option("auto", "'auto' (exact if problem.symbolic else limited-memory), 'exact' or "
-                          "'limited-memory'", "")
+                          "'limited-memory'", "", check=one_of("auto", "exact", "limited-memory"))
     bound_relax_factor: float = option(0.0, "Ipopt relaxes bounds by this factor; 0 keeps returned points exactly "
-                                       "inside the bounds (Ipopt default 1e-8)", "problems/hs/hock_schittkowski.md")
-    mu_strategy: str = option("monotone", "barrier update: 'monotone' or 'adaptive'", "Ipopt default 'monotone'")
-
-    def __post_init__(self) -> None:
-        if not (self.tol > 0 and np.isfinite(self.tol)):
-            raise ValueError(f"ipopt: tol must be a positive finite number, got {self.tol!r}")
-        if self.max_iter < 1:
-            raise ValueError(f"ipopt: max_iter must be >= 1, got {self.max_iter}")
-        if self.hessian not in ("auto", "exact", "limited-memory"):
-            raise ValueError(f"ipopt: hessian must be 'auto', 'exact' or 'limited-memory', got {self.hessian!r}")
-        if not self.bound_relax_factor >= 0:
-            raise ValueError(f"ipopt: bound_relax_factor must be >= 0, got {self.bound_relax_factor!r}")
-        if self.mu_strategy not in ("monotone", "adaptive"):
-            raise ValueError(f"ipopt: mu_strategy must be 'monotone' or 'adaptive', got {self.mu_strategy!r}")
+                                       "inside the bounds (Ipopt default 1e-8)", "problems/hs/hock_schittkowski.md",
+                                       check=nonneg())
+    mu_strategy: str = option("monotone", "barrier update: 'monotone' or 'adaptive'", "Ipopt default 'monotone'",
+                              check=one_of("monotone", "adaptive"))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         problem = oracle.problem

@@ -27,16 +27,18 @@ import numpy as np
 
 from problems import Oracle
 
-from ._base import AbstractSolver, option
-from ._penalty import OracleForm, PenaltyForm, ThreePhaseResult, three_phase
-from ._result import SolverOutput, Status
+from ._base import AbstractSolver, at_least, final, nonneg, one_of, option, positive
+from ._penalty import PenaltyForm, ThreePhaseResult
+from ._penalty_phases import PenaltyPhases, phases_output
+from ._result import SolverOutput
 from .lfop import LfopParams, lfop
 
 __all__ = ["LFOPC", "PenaltyForm"]  # PenaltyForm re-exported: the function-free entry point
 
 
+@final
 @dataclasses.dataclass(frozen=True)
-class LFOPC(AbstractSolver):
+class LFOPC(PenaltyPhases, AbstractSolver):
     """Leap-frog optimizer for constrained problems (Snyman 2000; thesis Appendix B).
 
     Phase 0: LFOP on the exterior penalty function Q(x, mu0) (eq. B.6) from x0;
@@ -51,45 +53,31 @@ class LFOPC(AbstractSolver):
     family = "thesis"
     handles = frozenset({"bounds", "ineq", "eq"})
 
-    mu0: float = option(1e2, "phase-0 penalty parameter", "App. B.4 [THESIS]")
-    mu1: float = option(1e4, "phase-1/2 penalty parameter", "App. B.4 [THESIS]")
-    phase2_exterior: bool = option(True, "keep the exterior penalty on inactive inequalities in phase 2 "
-                                   "(False: eq. B.7 literally)", "[OWN] (B.7 lets phase 2 run away on "
-                                   "non-convex subproblems, e.g. Dynamic-Q on HS23)")
     carry_dt: bool = option(True, "start phases 1 and 2 with the time step reached in the previous phase "
                             "(x sqrt(mu0/mu1) into phase 1) instead of dt0", "[OWN] (dt0 next to a stiff wall "
                             "first leaps far across it)")
-    scale_constraints: bool = option(False, "in minimize(oracle): penalty weight alpha_j = mu/||grad g_j(x0)||^2 "
-                                     "per constraint (walls of equal stiffness) instead of one mu",
-                                     "eq. (B.6) allows alpha_j, beta_k per constraint [THESIS]; choice [OWN]")
-    phase2_tol: float = option(1e-10, "phase 2 also ends when every active constraint satisfies |g_j|, |h_k| <= "
-                               "phase2_tol (0 = gradient test only)", "[OWN] (Q_a's minimum is 0; at degenerate "
-                               "intersections, e.g. the cusp of HS13, its gradient test takes thousands of steps)")
-    active_tol: float = option(0.0, "g_j(x*(mu1)) > active_tol marks constraint j active for phase 2",
-                               "App. B.4 '> 0' [THESIS]; tolerance [OWN]")
-    delta: float = option(1.0, "LFOP maximum step length", "[CILIB] LFDecorator delta = 1; [MLA3]")
-    dt0: float = option(0.5, "LFOP initial time step", "[CILIB] defaultDeltaT = 0.5; [MLA3]")
-    m: int = option(3, "acceleration reversals at the step limit before dt is halved", "[CILIB] m = 3; [MLA3]")
-    delta1: float = option(1e-3, "increment of the time-step magnification factor", "[CILIB]; [MLA3] code")
-    j0: int = option(2, "interferences keeping a reduced velocity before it is zeroed", "[CILIB] j = 2; [MLA3] ix = 2")
-    eps_g: float = option(1e-5, "per-phase stop: ||grad Q|| <= eps_g", "[MLA3] tol = 1e-5")
-    max_steps: int = option(10_000, "per-phase cap on gradient evaluations", "[OWN]")
-    eps_x: float = option(0.0, "per-phase stop on step length (0 = off)", "[OWN]")
-    dt_mode: str = option("fixed", "'fixed' (dt0) or 'auto' (first step delta/10)", "[CILIB] / [RECALL]")
+    delta: float = option(1.0, "LFOP maximum step length", "[CILIB] LFDecorator delta = 1; [MLA3]", check=positive())
+    dt0: float = option(0.5, "LFOP initial time step", "[CILIB] defaultDeltaT = 0.5; [MLA3]", check=positive())
+    m: int = option(3, "acceleration reversals at the step limit before dt is halved", "[CILIB] m = 3; [MLA3]",
+                    check=at_least(1))
+    delta1: float = option(1e-3, "increment of the time-step magnification factor", "[CILIB]; [MLA3] code",
+                           check=nonneg())
+    j0: int = option(2, "interferences keeping a reduced velocity before it is zeroed", "[CILIB] j = 2; [MLA3] ix = 2",
+                     check=at_least(1))
+    eps_g: float = option(1e-5, "per-phase stop: ||grad Q|| <= eps_g", "[MLA3] tol = 1e-5", check=nonneg())
+    max_steps: int = option(10_000, "per-phase cap on gradient evaluations", "[OWN]", check=at_least(1))
+    eps_x: float = option(0.0, "per-phase stop on step length (0 = off)", "[OWN]", check=nonneg())
+    dt_mode: str = option("fixed", "'fixed' (dt0) or 'auto' (first step delta/10)", "[CILIB] / [RECALL]",
+                          check=one_of("fixed", "auto"))
     interference_anchor: str = option("moving", "'moving' [CILIB] or 'fixed' [MLA3] midpoint anchor",
-                                      "algorithms.md 1.3 step 9")
+                                      "algorithms.md 1.3 step 9", check=one_of("moving", "fixed"))
     stiffness_guard: bool = option(True, "cap dt by the curvature along the last move (penalty walls)",
                                    "[OWN] algorithms.md 1.6")
-    kappa_fac: float = option(0.5, "stiffness guard target dt*sqrt(kappa)", "[OWN] algorithms.md 1.6")
+    kappa_fac: float = option(0.5, "stiffness guard target dt*sqrt(kappa)", "[OWN] algorithms.md 1.6", check=positive())
 
-    def __post_init__(self) -> None:
-        if not (np.isfinite(self.mu0) and np.isfinite(self.mu1) and 0 < self.mu0 <= self.mu1):
-            raise ValueError(f"lfopc: need 0 < mu0 <= mu1 < inf, got mu0={self.mu0}, mu1={self.mu1}")
-        if not (self.phase2_tol >= 0):
-            raise ValueError(f"lfopc: phase2_tol must be >= 0, got {self.phase2_tol}")
-        if not (self.active_tol >= 0):
-            raise ValueError(f"lfopc: active_tol must be >= 0, got {self.active_tol}")
-        self.lfop_params()  # validates the LFOP options with clear messages
+    def check_together(self) -> None:
+        self._check_mu(self.name)
+        self.lfop_params()  # LfopParams's own checks (the function API's front door)
 
     def lfop_params(self) -> LfopParams:
         """The LFOP parameters used in every phase."""
@@ -101,31 +89,9 @@ class LFOPC(AbstractSolver):
     def solve_form(self, form: PenaltyForm, x0: np.ndarray) -> ThreePhaseResult:
         """Run the three phases on a penalty form from ``x0`` (no function values used)."""
         params = self.lfop_params()
-        return three_phase(form, x0, lambda grad, x, **kw: lfop(grad, x, params, **kw), self.mu0, self.mu1,
-                           self.active_tol, phase2_exterior=self.phase2_exterior, carry_dt=self.carry_dt,
-                           phase2_tol=self.phase2_tol)
-
-    def _oracle_form(self, oracle: Oracle) -> OracleForm:
-        form = OracleForm(oracle)
-        if self.scale_constraints:
-            form.scale_by_gradients(oracle.x0)
-        return form
+        return self._three_phase(form, x0, lambda grad, x, **kw: lfop(grad, x, params, **kw), carry_dt=self.carry_dt)
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         res = self.solve_form(self._oracle_form(oracle), oracle.x0)
-        return _output(res, self.max_steps)
+        return phases_output(res, self.max_steps)
 
-
-def _output(res: ThreePhaseResult, max_steps: int) -> SolverOutput:
-    """Status from the phase end reasons (shared with ETOPC)."""
-    reasons = [ph.reason for ph in res.phases]
-    msg = "; ".join(f"phase {ph.phase}: {ph.reason} after {ph.ng} gradients" for ph in res.phases)
-    if "nonfinite" in reasons:
-        status = Status.ERROR
-    elif res.converged:
-        status = Status.CONVERGED
-    else:
-        status = Status.MAX_ITER
-        msg += f" (cap {max_steps} per phase)"
-    extra = res.summary()
-    return SolverOutput(res.x, status, msg, nit=res.ng, extra=extra)

@@ -23,7 +23,7 @@ import numpy as np
 
 from problems import Oracle, ProblemError
 
-from ._base import AbstractSolver, option
+from ._base import AbstractSolver, at_least, between, final, nonneg, option
 from ._result import SolverOutput, Status
 from .scipy_constrained import start_in_bounds
 
@@ -53,24 +53,21 @@ class _NloptBase(AbstractSolver):
     native_eq: ClassVar[bool]
     STATUS_MAP: ClassVar[dict[int, Status]] = STATUS_MAP
 
-    ftol_rel: float = option(1e-12, "stop when |delta f| < ftol_rel |f| between iterations", "NLopt ftol_rel")
-    xtol_rel: float = option(1e-10, "stop when every |delta x_i| < xtol_rel |x_i|", "NLopt xtol_rel")
+    ftol_rel: float = option(1e-12, "stop when |delta f| < ftol_rel |f| between iterations", "NLopt ftol_rel",
+                             check=nonneg(finite=True))
+    xtol_rel: float = option(1e-10, "stop when every |delta x_i| < xtol_rel |x_i|", "NLopt xtol_rel",
+                             check=nonneg(finite=True))
     maxeval: int = option(3000, "cap on objective evaluations (NLopt's own count; the oracle's N^fg is reported)",
-                          "NLopt maxeval")
+                          "NLopt maxeval", check=at_least(1))
     maxtime: float = option(0.0, "wall-clock limit in seconds, 0 = none (NLopt then ends with MAXTIME_REACHED); "
                             "any limit makes the end depend on machine load, so the default relies on maxeval and "
-                            "the harness's per-run timeout", "NLopt maxtime; default [OWN] (determinism)")
-    constraint_tol: float = option(1e-8, "per-constraint feasibility tolerance given to NLopt", "NLopt mconstraint tol")
+                            "the harness's per-run timeout", "NLopt maxtime; default [OWN] (determinism)",
+                            check=nonneg(finite=True))
+    constraint_tol: float = option(1e-8, "per-constraint feasibility tolerance given to NLopt", "NLopt mconstraint tol",
+                                   check=nonneg(finite=True))
     eq_band: float = option(1e-7, "half-width delta of the band -delta <= h(x) <= delta used for equality "
-                            "constraints when the algorithm has no native equalities (MMA)", "this module's doc")
-
-    def __post_init__(self) -> None:
-        for k in ("ftol_rel", "xtol_rel", "constraint_tol", "eq_band", "maxtime"):
-            v = getattr(self, k)
-            if not (v >= 0 and np.isfinite(v)):
-                raise ValueError(f"{self.name}: {k} must be a finite number >= 0, got {v!r}")
-        if self.maxeval < 1:
-            raise ValueError(f"{self.name}: maxeval must be >= 1, got {self.maxeval}")
+                            "constraints when the algorithm has no native equalities (MMA)", "this module's doc",
+                            check=nonneg(finite=True))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         n = oracle.n
@@ -147,6 +144,7 @@ def _code_name(code: int) -> str:
     return names.get(int(code), "unknown")
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class NloptMMA(_NloptBase):
     """NLopt LD_MMA: Svanberg's method of moving asymptotes (CCSA, 2002 variant).
@@ -163,22 +161,16 @@ class NloptMMA(_NloptBase):
 
     dual_ftol_rel: float = option(1e-8, "relative f tolerance of MMA's inner dual subproblem. NLopt's default "
                                   "1e-14 made single HS runs take minutes (HS28: 100 s) with the same end point",
-                                  "NLopt CCSA/MMA parameter 'dual_ftol_rel'")
+                                  "NLopt CCSA/MMA parameter 'dual_ftol_rel'", check=between(0, 1))
     dual_maxeval: int = option(1000, "cap on the inner dual iterations per MMA subproblem (NLopt: unlimited; "
-                               "HS55 then took 250 s)", "NLopt CCSA/MMA parameter 'dual_maxeval'")
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        if not (0 < self.dual_ftol_rel < 1):
-            raise ValueError(f"{self.name}: dual_ftol_rel must be in (0, 1), got {self.dual_ftol_rel!r}")
-        if self.dual_maxeval < 1:
-            raise ValueError(f"{self.name}: dual_maxeval must be >= 1, got {self.dual_maxeval}")
+                               "HS55 then took 250 s)", "NLopt CCSA/MMA parameter 'dual_maxeval'", check=at_least(1))
 
     def _configure(self, opt: nlopt.opt) -> None:
         opt.set_param("dual_ftol_rel", self.dual_ftol_rel)
         opt.set_param("dual_maxeval", self.dual_maxeval)
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class NloptSLSQP(_NloptBase):
     """NLopt LD_SLSQP: Kraft's SLSQP (a C translation, independent of SciPy's build)."""

@@ -21,7 +21,7 @@ from scipy.optimize import minimize
 
 from problems import Oracle, Problem
 
-from ._base import AbstractSolver, option
+from ._base import AbstractSolver, at_least, final, nonneg, option
 from ._result import SolverOutput, Status
 
 __all__ = ["AbstractScipyMinimize", "ScipyCG", "ScipyBFGS", "ScipyLBFGSB"]
@@ -38,18 +38,10 @@ class AbstractScipyMinimize(AbstractSolver):
     method: ClassVar[str]
     STATUS_MAP: ClassVar[Mapping[int, Status]]
 
-    eps_g: float = option(1e-5, "gradient tolerance (SciPy gtol)", "Sec. 2.5 eps_g")
-    max_iter: int = option(20_000, "iteration cap (SciPy maxiter)", "Tables 2.1-2.2 caps")
+    eps_g: float = option(1e-5, "gradient tolerance (SciPy gtol)", "Sec. 2.5 eps_g", check=nonneg())
+    max_iter: int = option(20_000, "iteration cap (SciPy maxiter)", "Tables 2.1-2.2 caps", check=at_least(1))
     max_fg: int | None = option(None, "cap on N^fg, checked after each iteration (None = no cap)",
-                                "Tables 2.1-2.2 print '> N' in the N^fg column")
-
-    def __post_init__(self) -> None:
-        if not self.eps_g >= 0:
-            raise ValueError(f"{self.name}: eps_g must be >= 0, got {self.eps_g}")
-        if self.max_iter < 1:
-            raise ValueError(f"{self.name}: max_iter must be >= 1, got {self.max_iter}")
-        if self.max_fg is not None and self.max_fg < 1:
-            raise ValueError(f"{self.name}: max_fg must be >= 1 or None, got {self.max_fg}")
+                                "Tables 2.1-2.2 print '> N' in the N^fg column", check=at_least(1, or_none=True))
 
     def _options(self) -> dict[str, Any]:
         raise NotImplementedError
@@ -80,6 +72,7 @@ class AbstractScipyMinimize(AbstractSolver):
                             nit=int(getattr(res, "nit", 0) or 0), extra={"scipy_status": int(res.status)})
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class ScipyCG(AbstractScipyMinimize):
     """SciPy's nonlinear conjugate gradient method (``method="CG"``)."""
@@ -95,6 +88,7 @@ class ScipyCG(AbstractScipyMinimize):
         return {"gtol": self.eps_g, "maxiter": self.max_iter, "norm": self.norm}
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class ScipyBFGS(AbstractScipyMinimize):
     """SciPy's BFGS (dense n x n inverse Hessian: skipped above ``max_n`` variables).
@@ -120,6 +114,7 @@ class ScipyBFGS(AbstractScipyMinimize):
         return {"gtol": self.eps_g, "maxiter": self.max_iter, "norm": self.norm}
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class ScipyLBFGSB(AbstractScipyMinimize):
     """SciPy's L-BFGS-B (bounds passed through)."""

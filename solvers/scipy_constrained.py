@@ -19,7 +19,7 @@ from scipy import optimize
 
 from problems import Oracle
 
-from ._base import AbstractSolver, option
+from ._base import AbstractSolver, at_least, final, option, positive
 from ._result import SolverOutput, Status
 
 __all__ = ["ScipySLSQP", "ScipyTrustConstr", "ScipyCOBYLA", "start_in_bounds"]
@@ -39,12 +39,7 @@ def _bounds(oracle: Oracle) -> optimize.Bounds | None:
     return optimize.Bounds(oracle.lower, oracle.upper) if oracle.has_bounds else None
 
 
-def _check_positive(name: str, **values: float) -> None:
-    for k, v in values.items():
-        if not (v > 0 and np.isfinite(v)):
-            raise ValueError(f"{name}: {k} must be a positive finite number, got {v!r}")
-
-
+@final
 @dataclasses.dataclass(frozen=True)
 class ScipySLSQP(AbstractSolver):
     """Sequential least-squares quadratic programming (Kraft 1988) via ``scipy.optimize``.
@@ -72,17 +67,10 @@ class ScipySLSQP(AbstractSolver):
         -1: Status.FAILED,     # gradient evaluation required (internal; never final)
     }
 
-    ftol: float = option(
-        1e-10,
-        "SLSQP 'ftol': precision goal for f in the stopping test (relative to the merit function)",
-        "SciPy default 1e-6; tightened so E^r <= 1e-5 is reachable",
-    )
-    maxiter: int = option(500, "iteration cap (SLSQP major iterations)", "SciPy default 100")
-
-    def __post_init__(self) -> None:
-        _check_positive(self.name, ftol=self.ftol)
-        if self.maxiter < 1:
-            raise ValueError(f"{self.name}: maxiter must be >= 1, got {self.maxiter}")
+    ftol: float = option(1e-10, "SLSQP 'ftol': precision goal for f in the stopping test "
+                         "(relative to the merit function)",
+                         "SciPy default 1e-6; tightened so E^r <= 1e-5 is reachable", check=positive())
+    maxiter: int = option(500, "iteration cap (SLSQP major iterations)", "SciPy default 100", check=at_least(1))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         cons: list[dict[str, Any]] = []
@@ -100,6 +88,7 @@ class ScipySLSQP(AbstractSolver):
                             extra={"native_status": int(res.status)})
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class ScipyTrustConstr(AbstractSolver):
     """Trust-region interior-point / equality-constrained SQP (Byrd-Omojokun) via SciPy.
@@ -122,14 +111,10 @@ class ScipyTrustConstr(AbstractSolver):
     }
 
     gtol: float = option(1e-8, "stop when the Lagrangian gradient norm and the constraint violation are below gtol",
-                         "SciPy default 1e-8")
-    xtol: float = option(1e-10, "stop when the trust-region radius is below xtol", "SciPy default 1e-8")
-    maxiter: int = option(1000, "iteration cap", "SciPy default 1000")
-
-    def __post_init__(self) -> None:
-        _check_positive(self.name, gtol=self.gtol, xtol=self.xtol)
-        if self.maxiter < 1:
-            raise ValueError(f"{self.name}: maxiter must be >= 1, got {self.maxiter}")
+                         "SciPy default 1e-8", check=positive())
+    xtol: float = option(1e-10, "stop when the trust-region radius is below xtol", "SciPy default 1e-8",
+                        check=positive())
+    maxiter: int = option(1000, "iteration cap", "SciPy default 1000", check=at_least(1))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         cons = []
@@ -149,6 +134,7 @@ class ScipyTrustConstr(AbstractSolver):
                             nit=int(res.get("nit", 0)), extra={"native_status": int(res.status)})
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class ScipyCOBYLA(AbstractSolver):
     """COBYLA (Powell 1994; SciPy's PRIMA implementation): derivative-free baseline.
@@ -182,18 +168,18 @@ class ScipyCOBYLA(AbstractSolver):
         103: Status.ERROR,     # MEMORY_ALLOCATION_FAILS
     }
 
-    rhobeg: float = option(1.0, "initial trust-region radius (initial change of the variables)", "SciPy default")
-    tol: float = option(1e-8, "final trust-region radius (accuracy in x)", "SciPy default 1e-4; tightened")
+    rhobeg: float = option(1.0, "initial trust-region radius (initial change of the variables)", "SciPy default",
+                          check=positive())
+    tol: float = option(1e-8, "final trust-region radius (accuracy in x)", "SciPy default 1e-4; tightened",
+                       check=positive())
     maxfev: int = option(5000, "cap on function evaluations (each is one N^fg); PRIMA in Python costs ~10 ms per "
-                         "evaluation, so this also bounds the run time", "SciPy default 1000")
-    catol: float = option(1e-8, "absolute constraint-violation tolerance for PRIMA's own success test", "")
+                         "evaluation, so this also bounds the run time", "SciPy default 1000", check=at_least(1))
+    catol: float = option(1e-8, "absolute constraint-violation tolerance for PRIMA's own success test", "",
+                         check=positive())
 
-    def __post_init__(self) -> None:
-        _check_positive(self.name, rhobeg=self.rhobeg, tol=self.tol, catol=self.catol)
+    def check_together(self) -> None:
         if self.tol > self.rhobeg:
             raise ValueError(f"{self.name}: tol ({self.tol}) must not exceed rhobeg ({self.rhobeg})")
-        if self.maxfev < 1:
-            raise ValueError(f"{self.name}: maxfev must be >= 1, got {self.maxfev}")
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         cons: list[dict[str, Any]] = []

@@ -8,7 +8,7 @@ import numpy as np
 
 from problems import Oracle
 
-from ._base import AbstractSolver, option
+from ._base import AbstractSolver, at_least, final, nonneg, option, positive
 from ._result import SolverOutput, Status
 
 __all__ = ["SQSD"]
@@ -16,6 +16,7 @@ __all__ = ["SQSD"]
 C_MIN = 1e-60  # Algorithm 2.2 step 3: replacement curvature when c_k < 0
 
 
+@final
 @dataclasses.dataclass(frozen=True)
 class SQSD(AbstractSolver):
     """Spherical quadratic steepest descent, Algorithm 2.2 exactly.
@@ -31,20 +32,13 @@ class SQSD(AbstractSolver):
     family = "thesis"
     handles = frozenset()
 
-    rho: float = option(
-        1.0, "step limit; c_0 = ||grad f(x0)||/rho makes the first step of length rho", "Alg. 2.2, Table 2.1"
-    )
-    eps_g: float = option(1e-5, "stop when ||grad f|| < eps_g", "Alg. 2.2 step 1, Sec. 2.5")
-    eps_x: float = option(1e-8, "stop when ||x^k - x^(k-1)|| < eps_x", "Alg. 2.2 step 2, Sec. 2.5")
-    max_iter: int = option(200_000, "iteration cap (N^fg cap)", "Tables 2.1-2.2 (20000-100000 for SD/FR/PR)")
-
-    def __post_init__(self) -> None:
-        if not (self.rho > 0 and np.isfinite(self.rho)):
-            raise ValueError(f"sqsd: rho must be a positive finite number, got {self.rho}")
-        if self.eps_g < 0 or self.eps_x < 0:
-            raise ValueError("sqsd: eps_g and eps_x must be >= 0")
-        if self.max_iter < 1:
-            raise ValueError("sqsd: max_iter must be >= 1")
+    rho: float = option(1.0, "step limit; c_0 = ||grad f(x0)||/rho makes the first step of length rho",
+                        "Alg. 2.2, Table 2.1",
+                        check=positive())
+    eps_g: float = option(1e-5, "stop when ||grad f|| < eps_g", "Alg. 2.2 step 1, Sec. 2.5", check=nonneg())
+    eps_x: float = option(1e-8, "stop when ||x^k - x^(k-1)|| < eps_x", "Alg. 2.2 step 2, Sec. 2.5", check=nonneg())
+    max_iter: int = option(200_000, "iteration cap (N^fg cap)", "Tables 2.1-2.2 (20000-100000 for SD/FR/PR)",
+                           check=at_least(1))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         x_prev = oracle.x0

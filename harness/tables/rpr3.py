@@ -16,7 +16,6 @@ orientations of d* (`rpr3_suite.enclosing_window`) missing the ones the synthesi
 from __future__ import annotations
 
 import functools
-import json
 import math
 import time
 
@@ -72,13 +71,6 @@ def dextrous_table(chord: float = 0.02, ranges=DEXTROUS_RANGES) -> Table:
             "The ranges plotted in Figs. 5.4-5.6 are not stated in the text; these are our choice.",
         ],
     )
-
-
-def _history_ng(history: str) -> int:
-    try:
-        return len(json.loads(history))
-    except Exception:  # noqa: BLE001
-        return 0
 
 
 def _best_enclosed(kind: str, pname: str, sub: pd.DataFrame) -> float | None:

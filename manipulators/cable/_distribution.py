@@ -110,11 +110,6 @@ def _det_cols(X, Y, M, a: int, b: int, c: int) -> np.ndarray:
             + M[a] * (X[b] * Y[c] - Y[b] * X[c]))
 
 
-def null_vector_4(S: np.ndarray) -> np.ndarray:
-    """Null vector of each 3 x 4 structure matrix: z_j = (-1)^j det(S without column j)."""
-    return _null4_rows(*_rows(S)).T
-
-
 def _null4_rows(X, Y, M) -> np.ndarray:
     return np.stack([_det_cols(X, Y, M, 1, 2, 3), -_det_cols(X, Y, M, 0, 2, 3),
                      _det_cols(X, Y, M, 0, 1, 3), -_det_cols(X, Y, M, 0, 1, 2)], axis=0)

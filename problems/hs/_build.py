@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
+import threading
 from importlib import resources
 from typing import Any
 
@@ -93,23 +94,64 @@ def compiled(pid: str) -> HSFunctions:
     )
 
 
+class _Numeric:
+    """Numeric evaluation of a one-input dense CasADi Function through its buffer interface.
+
+    ``Function.__call__`` converts the NumPy input to a DM and the DM result back to NumPy on
+    every call (~50 us, most of an HS problem's cost inside LFOPC); ``Function.buffer()``
+    evaluates the same compiled expression graph on preallocated arrays (~2 us), with the
+    same floating-point operations, so the values are bitwise those of ``fun(x)``.  One
+    buffer per thread: a buffer holds its input and output between calls.
+    """
+
+    def __init__(self, fun: ca.Function, rows: int, cols: int) -> None:
+        self.fun, self.rows, self.cols = fun, rows, cols
+        self.n = fun.size1_in(0)
+        self._local = threading.local()
+
+    def _buffers(self) -> tuple[np.ndarray, np.ndarray, Any, Any]:
+        b = getattr(self._local, "b", None)
+        if b is None:
+            buf, run = self.fun.buffer()
+            xin, out = np.zeros(self.n), np.zeros(self.rows * self.cols)
+            buf.set_arg(0, memoryview(xin))
+            buf.set_res(0, memoryview(out))
+            b = self._local.b = (xin, out, buf, run)
+        return b
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        if x.size != self.n:
+            raise ValueError(f"{self.fun.name()}: x must have {self.n} entries, got shape {x.shape}")
+        xin, out, _, run = self._buffers()
+        xin[:] = x.reshape(-1)
+        run()
+        return out.copy()  # column-major values
+
+
 def _vec(fun: ca.Function):
+    num = _Numeric(fun, fun.size1_out(0), 1)
+
     def call(x: np.ndarray) -> np.ndarray:
-        return np.asarray(fun(x), dtype=float).reshape(-1)
+        return num(x)
 
     return call
 
 
 def _mat(fun: ca.Function, rows: int, cols: int):
+    num = _Numeric(fun, rows, cols)
+
     def call(x: np.ndarray) -> np.ndarray:
-        return np.asarray(fun(x), dtype=float).reshape(rows, cols)
+        return num(x).reshape(cols, rows).T.copy()  # CasADi stores column-major
 
     return call
 
 
 def _scalar(fun: ca.Function):
+    num = _Numeric(fun, 1, 1)
+
     def call(x: np.ndarray) -> float:
-        return float(fun(x))
+        return float(num(x)[0])
 
     return call
 
