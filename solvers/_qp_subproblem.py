@@ -1,0 +1,87 @@
+"""Dynamic-Q+'s subproblem: a spherical (one-curvature) convex QP with an elastic l1 penalty.
+
+At the iterate x the subproblem in the step d is
+
+    min  grad f^T d + sigma/2 ||d||^2 + mu (sum_j s_j + sum_k (t+_k + t-_k))
+    s.t. g_j + grad g_j^T d <= s_j,   h_k + grad h_k^T d = t+_k - t-_k,   s, t+, t- >= 0
+         max(lower - x, -rho) <= d <= min(upper - x, rho)
+
+sigma is the spherical curvature of the Lagrangian (thesis eq. 3.6 applied to f + lambda^T g
++ nu^T h, our extension, see docs/thesis_solvers.md).  The elastic variables s, t make the QP
+feasible whatever the move limit; when the linearized constraints can be met inside the box
+and mu exceeds the multipliers, s = t = 0 and the step is the ordinary SQP step (Fletcher's
+Sl1QP).  Solved exactly by Clarabel (interior point; dual variables give the multipliers).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import clarabel
+import numpy as np
+import scipy.sparse as sp
+
+__all__ = ["ElasticQPResult", "solve_elastic_qp", "l1_model"]
+
+
+@dataclass(frozen=True)
+class ElasticQPResult:
+    """Step d, multipliers lam (ineq, >= 0) and nu (eq), the elastic slack total and the model value."""
+
+    d: np.ndarray
+    lam: np.ndarray
+    nu: np.ndarray
+    elastic: float
+    model: float
+    ok: bool
+
+
+def l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu) -> float:
+    """Model of the l1 merit f + mu (sum max(g,0) + sum |h|) minus f(x), at step d."""
+    v = float(gf @ d) + 0.5 * sigma * float(d @ d)
+    if g0.size:
+        v += mu * float(np.maximum(g0 + Jg @ d, 0.0).sum())
+    if h0.size:
+        v += mu * float(np.abs(h0 + Jh @ d).sum())
+    return v
+
+
+def solve_elastic_qp(gf: np.ndarray, sigma: float, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
+                     Jh: np.ndarray, d_lo: np.ndarray, d_up: np.ndarray, mu: float) -> ElasticQPResult:
+    """Solve the elastic spherical QP above (box ``d_lo <= d <= d_up``, ``sigma > 0``)."""
+    n, p, q = gf.size, g0.size, h0.size
+    nv = n + p + 2 * q
+    P = sp.diags(np.r_[np.full(n, sigma), np.zeros(nv - n)], format="csc")
+    c = np.r_[gf, np.full(p + 2 * q, mu)]
+    # equality rows first (ZeroCone), then inequality rows (Nonnegative): A v + s = b
+    blocks, rhs = [], []
+    if q:
+        blocks.append(sp.hstack([sp.csr_matrix(Jh), sp.csr_matrix((q, p)), -sp.eye(q), sp.eye(q)]))
+        rhs.append(-h0)
+    ineq_blocks = []
+    if p:
+        ineq_blocks.append(sp.hstack([sp.csr_matrix(Jg), -sp.eye(p), sp.csr_matrix((p, 2 * q))]))
+        rhs.append(-g0)
+    # elastic variables >= 0, then the box on d
+    ineq_blocks.append(sp.hstack([sp.csr_matrix((p + 2 * q, n)), -sp.eye(p + 2 * q)]))
+    rhs.append(np.zeros(p + 2 * q))
+    Ibox = sp.hstack([sp.eye(n), sp.csr_matrix((n, p + 2 * q))])
+    ineq_blocks += [Ibox, -Ibox]
+    rhs += [d_up, -d_lo]
+    A = sp.vstack(blocks + ineq_blocks, format="csc")
+    b = np.concatenate(rhs)
+    cones = ([clarabel.ZeroConeT(q)] if q else []) + [clarabel.NonnegativeConeT(A.shape[0] - q)]
+    settings = clarabel.DefaultSettings()
+    settings.verbose = False
+    settings.tol_gap_abs = settings.tol_gap_rel = 1e-10
+    settings.tol_feas = 1e-10
+    sol = clarabel.DefaultSolver(P, c, A, b, cones, settings).solve()
+    ok = str(sol.status) in ("Solved", "AlmostSolved")
+    v = np.asarray(sol.x)
+    z = np.asarray(sol.z)
+    d = np.clip(v[:n], d_lo, d_up) if ok else np.zeros(n)
+    nu = z[:q].copy() if ok else np.zeros(q)
+    lam = np.maximum(z[q:q + p], 0.0) if ok else np.zeros(p)
+    elastic = float(v[n:].sum()) if ok else 0.0
+    model = l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu)
+    return ElasticQPResult(d, lam, nu, elastic, model, ok)
