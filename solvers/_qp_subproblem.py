@@ -6,7 +6,7 @@ At the iterate x the subproblem in the step d is
     s.t. g_j + grad g_j^T d <= s_j,   h_k + grad h_k^T d = t+_k - t-_k,   s, t+, t- >= 0
          max(lower - x, -rho) <= d <= min(upper - x, rho)
 
-sigma is the spherical curvature of the Lagrangian (thesis eq. 3.6 applied to f + lambda^T g
+sigma (a scalar, or a diagonal: sum_i sigma_i d_i^2) is the curvature of the Lagrangian (thesis eq. 3.6 applied to f + lambda^T g
 + nu^T h, our extension, see docs/thesis_solvers.md).  The elastic variables s, t make the QP
 feasible whatever the move limit; when the linearized constraints can be met inside the box
 and mu exceeds the multipliers, s = t = 0 and the step is the ordinary SQP step (Fletcher's
@@ -38,7 +38,7 @@ class ElasticQPResult:
 
 def l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu) -> float:
     """Model of the l1 merit f + mu (sum max(g,0) + sum |h|) minus f(x), at step d."""
-    v = float(gf @ d) + 0.5 * sigma * float(d @ d)
+    v = float(gf @ d) + 0.5 * float(d @ (sigma * d))
     if g0.size:
         v += mu * float(np.maximum(g0 + Jg @ d, 0.0).sum())
     if h0.size:
@@ -54,13 +54,13 @@ def _settings() -> clarabel.DefaultSettings:
     return settings
 
 
-def solve_elastic_qp(gf: np.ndarray, sigma: float, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
+def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
                      Jh: np.ndarray, d_lo: np.ndarray, d_up: np.ndarray, mu: float) -> ElasticQPResult:
-    """Solve the elastic spherical QP above (box ``d_lo <= d <= d_up``, ``sigma > 0``)."""
+    """Solve the elastic QP above (box ``d_lo <= d <= d_up``; ``sigma > 0`` a scalar or a diagonal, shape (n,))."""
     n, p, q = gf.size, g0.size, h0.size
     nv = n + p + 2 * q
     ne = p + 2 * q  # elastic variables s, t+, t-
-    P = sp.csc_matrix((np.full(n, float(sigma)), np.arange(n), np.r_[np.arange(n + 1), np.full(ne, n)]),
+    P = sp.csc_matrix((np.broadcast_to(np.asarray(sigma, dtype=float), (n,)).copy(), np.arange(n), np.r_[np.arange(n + 1), np.full(ne, n)]),
                       shape=(nv, nv))
     c = np.r_[gf, np.full(ne, mu)]
     # rows: equalities (ZeroCone), then inequalities, elastic >= 0, box (Nonnegative): A v + s = b.
@@ -81,9 +81,13 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float, g0: np.ndarray, Jg: np.ndarra
     cones = ([clarabel.ZeroConeT(q)] if q else []) + [clarabel.NonnegativeConeT(m - q)]
     settings = _settings()
     sol = clarabel.DefaultSolver(P, c, A, b, cones, settings).solve()
-    ok = str(sol.status) in ("Solved", "AlmostSolved")
     v = np.asarray(sol.x)
     z = np.asarray(sol.z)
+    # the elastic QP is always feasible and bounded: a stalled interior point (insufficient progress,
+    # iteration cap) still returns a usable finite step; only non-finite output is a failure
+    ok = str(sol.status) in ("Solved", "AlmostSolved") or (
+        str(sol.status) in ("InsufficientProgress", "MaxIterations", "MaxTime", "AlmostPrimalInfeasible",
+                            "AlmostDualInfeasible") and bool(np.all(np.isfinite(v)) and np.all(np.isfinite(z))))
     d = np.clip(v[:n], d_lo, d_up) if ok else np.zeros(n)
     nu = z[:q].copy() if ok else np.zeros(q)
     lam = np.maximum(z[q:q + p], 0.0) if ok else np.zeros(p)

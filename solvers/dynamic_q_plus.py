@@ -30,6 +30,10 @@ from ._result import SolverOutput, Status
 
 __all__ = ["DynamicQPlus"]
 
+CURVATURES = ("diagonal", "spherical")
+MU_MAX = 1e10
+COND_MAX = 1e4  # largest ratio of the diagonal curvatures
+
 
 def _finite(ev: dict[str, Any]) -> bool:
     return bool(np.isfinite(ev["f"]) and all(np.all(np.isfinite(ev[k]))
@@ -65,11 +69,16 @@ class DynamicQPlus(AbstractSolver):
     eps_x: float = option(1e-7, "stop: ||d||_inf / (1 + ||x||_inf) below this at a feasible point", "[OWN]")
     eps_f: float = option(1e-10, "stop: predicted merit reduction / (1 + |f|) below this at a feasible point",
                           "[OWN]")
+    eps_df: float = option(1e-9, "stop: an accepted interior (full) step between feasible points changed f by "
+                           "less than this relative to 1 + |f| (the thesis's test (3.11), guarded)", "[OWN]; (3.11)")
     eps_c: float = option(1e-7, "feasibility: every constraint violation <= eps_c", "[OWN]")
     eta: float = option(0.1, "accept a step when actual / predicted merit reduction >= eta", "[OWN] trust region")
     shrink: float = option(0.3, "on rejection rho = shrink * ||d||_inf", "[OWN] trust region")
     sigma_min: float = option(1e-8, "lower safeguard on the spherical curvature", "[OWN]")
     sigma_max: float = option(1e8, "upper safeguard on the spherical curvature", "[OWN]")
+    curvature: str = option("spherical", "'diagonal': per-variable curvatures of the Lagrangian by the weak-secant "
+                            "update started from eq. (3.6); 'spherical': one curvature, eq. (3.6) on the Lagrangian",
+                            "[OWN]; eq. (3.6) [THESIS]; Zhu-Nazareth-Wolkowicz diagonal weak secant")
     mu0: float = option(10.0, "initial l1 penalty weight (raised to 2 x the largest multiplier)", "[OWN]")
     memory: int = option(4, "non-monotone merit: compare with the worst of this many last accepted points",
                          "[OWN] (Grippo-Lampariello-Lucidi style; 1 = monotone)")
@@ -80,7 +89,7 @@ class DynamicQPlus(AbstractSolver):
             v = getattr(self, k)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
                 raise ValueError(f"dynamic-q-plus: {k} must be a positive finite number, got {v!r}")
-        for k in ("eps_x", "eps_f", "eps_c"):
+        for k in ("eps_x", "eps_f", "eps_df", "eps_c"):
             v = getattr(self, k)
             if not (isinstance(v, (int, float)) and v >= 0):
                 raise ValueError(f"dynamic-q-plus: {k} must be >= 0, got {v!r}")
@@ -88,6 +97,8 @@ class DynamicQPlus(AbstractSolver):
             v = getattr(self, k)
             if not (isinstance(v, (int, float)) and 0 < v < 1):
                 raise ValueError(f"dynamic-q-plus: {k} must be in (0, 1), got {v!r}")
+        if self.curvature not in CURVATURES:
+            raise ValueError(f"dynamic-q-plus: curvature must be one of {CURVATURES}, got {self.curvature!r}")
         if not (isinstance(self.max_iter, (int, np.integer)) and self.max_iter >= 1):
             raise ValueError(f"dynamic-q-plus: max_iter must be an integer >= 1, got {self.max_iter!r}")
 
@@ -100,6 +111,25 @@ class DynamicQPlus(AbstractSolver):
         L_new = ev_new["f"] + float(lam @ ev_new["ineq"]) + float(nu @ ev_new["eq"])
         gL = ev_old["g"] + ev_old["ineq_jac"].T @ lam + ev_old["eq_jac"].T @ nu
         return 2.0 * (L_new - L_old - float(gL @ dx)) / dd
+
+    def _update(self, sigma, s_sph, ev_old, ev_new, lam, nu, dx, first: bool) -> np.ndarray:
+        """New curvatures after the step dx (from x_old to x_new), safeguarded to [sigma_min, sigma_max].
+
+        'spherical' (and the first update of 'diagonal'): sigma_i = eq. (3.6) on the Lagrangian.
+        'diagonal': least change of diag(sigma) in the Frobenius norm that meets the weak secant
+        condition dx^T diag(sigma) dx = dx^T y, y the change of the Lagrangian's gradient.
+        """
+        if self.curvature == "spherical" or first:
+            new = np.full(dx.size, s_sph)
+        else:
+            gl = lambda e: e["g"] + e["ineq_jac"].T @ lam + e["eq_jac"].T @ nu  # noqa: E731
+            y = gl(ev_new) - gl(ev_old)
+            s2 = dx * dx
+            new = sigma + (float(dx @ y) - float(s2 @ sigma)) / float(s2 @ s2) * s2
+        new = np.clip(new, self.sigma_min, self.sigma_max)
+        # [OWN] keep the diagonal's spread <= COND_MAX: a near-zero curvature makes the model linear
+        # in that variable and the steps run to the move limit (seen on HS72)
+        return np.maximum(new, float(new.max()) / COND_MAX)
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         lo, up = oracle.lower, oracle.upper
@@ -120,7 +150,8 @@ class DynamicQPlus(AbstractSolver):
         ev = scaled(ev0)
         scale_x = max(1.0, float(np.max(np.abs(x), initial=0.0)))
         rho = float(self.rho) * scale_x
-        sigma = 1.0  # P[0]: no curvature information yet (the thesis' P[0] is linear)
+        n_upd = 0
+        sigma: Any = np.ones(oracle.n)  # P[0]: no curvature information yet (the thesis' P[0] is linear)
         mu = float(self.mu0)
         lam, nu = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)
         log: list[dict[str, Any]] = []
@@ -132,8 +163,12 @@ class DynamicQPlus(AbstractSolver):
             if not res.ok:
                 return SolverOutput(x, Status.ERROR, "QP subproblem failed", nit=it, extra=self._extra(log, n_rej))
             mult = max(float(np.max(res.lam, initial=0.0)), float(np.max(np.abs(res.nu), initial=0.0)))
-            if mult > 0.5 * mu:  # [OWN] exact-penalty weight must exceed the multipliers
-                mu = max(2.0 * mult, 10.0 * mu if res.elastic > self.eps_c else 2.0 * mult)
+            if mult > 0.5 * mu and res.elastic <= self.eps_c:
+                # [OWN] the exact-penalty weight must exceed the multipliers.  Not raised while the
+                # slacks are in use: then the multipliers sit at mu because the move limit cuts the
+                # linearization, not because mu is too small (raising it there ran mu to 1e7 on HS104);
+                # a merit-stationary infeasible point raises it below
+                mu = 2.0 * mult
                 res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
                                        np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
             d = res.d
@@ -145,6 +180,9 @@ class DynamicQPlus(AbstractSolver):
             if viol <= self.eps_c and (dn / xs < self.eps_x or pred / (1.0 + abs(ev["f"])) < self.eps_f):
                 return SolverOutput(x, Status.CONVERGED, "feasible and step / predicted reduction below tolerance",
                                     nit=it, extra=self._extra(log, n_rej))
+            if (dn == 0.0 or pred <= 0.0) and viol > self.eps_c and mu < MU_MAX:
+                mu *= 10.0  # [OWN] stationary for the merit but infeasible: weigh feasibility more
+                continue
             if dn == 0.0 or pred <= 0.0:
                 return SolverOutput(x, Status.FAILED if viol > self.eps_c else Status.CONVERGED,
                                     "no descent step for the l1 merit (stationary for the model)", nit=it,
@@ -164,16 +202,25 @@ class DynamicQPlus(AbstractSolver):
                 s = self._curvature(ev, evt, lam_new, nu_new, xt - x)
             if ratio >= self.eta:
                 if ok and s is not None:
-                    sigma = min(max(s, self.sigma_min), self.sigma_max)
+                    sigma = self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x, first=n_upd == 0)
+                    n_upd += 1
                 if ratio >= 0.25 and dn >= 0.99 * rho:  # the box limited a useful step
                     rho *= 2.0
+                f_change = abs(evt["f"] - ev["f"]) / (1.0 + abs(ev["f"]))
+                interior = dn < 0.99 * rho  # the full QP step, not cut by the move limit
                 x, ev, lam, nu = xt, evt, lam_new, nu_new
+                if (interior and ratio >= 0.75 and f_change < self.eps_df and viol <= self.eps_c
+                        and _violation(evt["raw"]) <= self.eps_c):
+                    return SolverOutput(x, Status.CONVERGED, "feasible full step with normalized change of f "
+                                        "< eps_df (as 3.11)", nit=it, extra=self._extra(log, n_rej))
                 recent = (recent + [evt])[-self.memory:]
             else:
                 n_rej += 1
                 rho = self.shrink * dn
-                if ok and s is not None and s > sigma:  # the model was too optimistic along d
-                    sigma = min(s, self.sigma_max)
+                if ok and s is not None:  # the model was too optimistic along d: only raise curvatures
+                    sigma = np.maximum(sigma, self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x,
+                                                           first=n_upd == 0))
+                    n_upd += 1
                 if rho / xs < 1e-3 * self.eps_x:
                     return SolverOutput(x, Status.CONVERGED if viol <= self.eps_c else Status.FAILED,
                                         "move limit collapsed", nit=it, extra=self._extra(log, n_rej))
