@@ -25,8 +25,9 @@ import numpy as np
 from problems import Oracle
 
 from ._base import AbstractSolver, option
-from ._qp_subproblem import solve_elastic_qp
+from ._qp_subproblem import l1_model, solve_elastic_qp
 from ._result import SolverOutput, Status
+from ._spherical import two_point_curvature
 
 __all__ = ["DynamicQPlus"]
 
@@ -79,6 +80,9 @@ class DynamicQPlus(AbstractSolver):
     curvature: str = option("spherical", "'diagonal': per-variable curvatures of the Lagrangian by the weak-secant "
                             "update started from eq. (3.6); 'spherical': one curvature, eq. (3.6) on the Lagrangian",
                             "[OWN]; eq. (3.6) [THESIS]; Zhu-Nazareth-Wolkowicz diagonal weak secant")
+    constraint_curvature: bool = option(False, "correct the linearized constraints by their spherical curvatures "
+                                        "(3.6) at the previous subproblem step length (second-order correction "
+                                        "without oracle calls)", "[OWN]; eq. (3.6) [THESIS]")
     mu0: float = option(10.0, "initial l1 penalty weight (raised to 2 x the largest multiplier)", "[OWN]")
     memory: int = option(4, "non-monotone merit: compare with the worst of this many last accepted points",
                          "[OWN] (Grippo-Lampariello-Lucidi style; 1 = monotone)")
@@ -151,6 +155,7 @@ class DynamicQPlus(AbstractSolver):
         scale_x = max(1.0, float(np.max(np.abs(x), initial=0.0)))
         rho = float(self.rho) * scale_x
         n_upd = 0
+        bq, cq = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)  # constraint curvatures (3.6)
         sigma: Any = np.ones(oracle.n)  # P[0]: no curvature information yet (the thesis' P[0] is linear)
         mu = float(self.mu0)
         lam, nu = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)
@@ -160,8 +165,12 @@ class DynamicQPlus(AbstractSolver):
         for it in range(1, self.max_iter + 1):
             res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
                                    np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
-            if not res.ok:
-                return SolverOutput(x, Status.ERROR, "QP subproblem failed", nit=it, extra=self._extra(log, n_rej))
+            if not res.ok:  # [OWN] numerical trouble in the QP solver: retry with a smaller move limit
+                rho *= self.shrink
+                if rho / (1.0 + float(np.max(np.abs(x), initial=0.0))) < 1e-3 * self.eps_x:
+                    return SolverOutput(x, Status.ERROR, "QP subproblem failed", nit=it,
+                                        extra=self._extra(log, n_rej))
+                continue
             mult = max(float(np.max(res.lam, initial=0.0)), float(np.max(np.abs(res.nu), initial=0.0)))
             if mult > 0.5 * mu and res.elastic <= self.eps_c:
                 # [OWN] the exact-penalty weight must exceed the multipliers.  Not raised while the
@@ -171,6 +180,24 @@ class DynamicQPlus(AbstractSolver):
                 mu = 2.0 * mult
                 res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
                                        np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+            if self.constraint_curvature and (np.any(bq) or np.any(cq)):
+                # [OWN] the thesis's constraint curvatures (3.6) as a model-based second-order
+                # correction: g~_j(d) = g_j + grad g_j^T d + b_j/2 ||d||^2 with ||d|| frozen at the
+                # previous solution (fixed point, no oracle calls); keeps steps on curved
+                # constraints (the Maratos zig-zag of HS27)
+                rc = res
+                for _ in range(2):
+                    dd = float(rc.d @ rc.d)
+                    rc = solve_elastic_qp(ev["g"], sigma, ev["ineq"] + 0.5 * bq * dd, ev["ineq_jac"],
+                                          ev["eq"] + 0.5 * cq * dd, ev["eq_jac"],
+                                          np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+                # predicted reduction of the curvature-corrected model at its own step; kept only if
+                # it is a descent step of that model
+                dd = float(rc.d @ rc.d)
+                mq = l1_model(rc.d, ev["g"], sigma, ev["ineq"] + 0.5 * bq * dd, ev["ineq_jac"],
+                              ev["eq"] + 0.5 * cq * dd, ev["eq_jac"], mu)
+                if rc.ok and mu * _l1_infeas(ev) - mq > 0.0:
+                    res = dataclasses.replace(rc, model=mq)
             d = res.d
             viol = _violation(ev["raw"])
             phi = ev["f"] + mu * _l1_infeas(ev)
@@ -200,6 +227,13 @@ class DynamicQPlus(AbstractSolver):
             lam_new, nu_new = res.lam, res.nu
             if ok:
                 s = self._curvature(ev, evt, lam_new, nu_new, xt - x)
+            if ok and self.constraint_curvature:
+                if ratio >= self.eta:  # eq. (3.6) at the new iterate xt from the old one
+                    bq = two_point_curvature(ev["ineq"], evt["ineq"], evt["ineq_jac"], x - xt)
+                    cq = two_point_curvature(ev["eq"], evt["eq"], evt["eq_jac"], x - xt)
+                else:  # the iterate stays: (3.6) at x from the rejected trial point
+                    bq = two_point_curvature(evt["ineq"], ev["ineq"], ev["ineq_jac"], xt - x)
+                    cq = two_point_curvature(evt["eq"], ev["eq"], ev["eq_jac"], xt - x)
             if ratio >= self.eta:
                 if ok and s is not None:
                     sigma = self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x, first=n_upd == 0)
