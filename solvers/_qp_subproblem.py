@@ -21,7 +21,7 @@ import clarabel
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["ElasticQPResult", "solve_elastic_qp", "l1_model"]
+__all__ = ["ElasticQPResult", "l1_model", "solve_elastic_qp"]
 
 
 @dataclass(frozen=True)

@@ -126,8 +126,8 @@ class DynamicQPlus(AbstractSolver):
         if self.curvature == "spherical" or first:
             new = np.full(dx.size, s_sph)
         else:
-            gl = lambda e: e["g"] + e["ineq_jac"].T @ lam + e["eq_jac"].T @ nu  # noqa: E731
-            y = gl(ev_new) - gl(ev_old)
+            y = (ev_new["g"] - ev_old["g"] + (ev_new["ineq_jac"] - ev_old["ineq_jac"]).T @ lam
+                 + (ev_new["eq_jac"] - ev_old["eq_jac"]).T @ nu)
             s2 = dx * dx
             new = sigma + (float(dx @ y) - float(s2 @ sigma)) / float(s2 @ s2) * s2
         new = np.clip(new, self.sigma_min, self.sigma_max)
@@ -158,7 +158,6 @@ class DynamicQPlus(AbstractSolver):
         bq, cq = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)  # constraint curvatures (3.6)
         sigma: Any = np.ones(oracle.n)  # P[0]: no curvature information yet (the thesis' P[0] is linear)
         mu = float(self.mu0)
-        lam, nu = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)
         log: list[dict[str, Any]] = []
         n_rej = 0
         recent: list[dict[str, Any]] = [ev]  # [OWN] non-monotone reference: last accepted points
@@ -242,7 +241,7 @@ class DynamicQPlus(AbstractSolver):
                     rho *= 2.0
                 f_change = abs(evt["f"] - ev["f"]) / (1.0 + abs(ev["f"]))
                 interior = dn < 0.99 * rho  # the full QP step, not cut by the move limit
-                x, ev, lam, nu = xt, evt, lam_new, nu_new
+                x, ev = xt, evt
                 if (interior and ratio >= 0.75 and f_change < self.eps_df and viol <= self.eps_c
                         and _violation(evt["raw"]) <= self.eps_c):
                     return SolverOutput(x, Status.CONVERGED, "feasible full step with normalized change of f "

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import itertools
+
 import cvxpy as cp
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import problems.hs as hs
+from problems import hs
 from solvers._qp_subproblem import l1_model, solve_elastic_qp
 from solvers._solve import solve
 from solvers.dynamic_q_plus import DynamicQPlus
@@ -70,7 +72,7 @@ def test_trust_region_rejects_and_shrinks():
     r = solve(hs.problem("2"), "dynamic-q-plus")
     log = r.extra["iterations"]
     assert r.extra["n_rejected"] >= 1
-    for a, b in zip(log, log[1:]):
+    for a, b in itertools.pairwise(log):
         if a["ratio"] < 0.1:  # the default eta
             assert b["rho"] < a["rho"]
 
