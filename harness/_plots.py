@@ -61,6 +61,14 @@ def _save(fig, outdir: pathlib.Path, stem: str) -> list[pathlib.Path]:
     return paths
 
 
+def _legend(ax, n: int, outside: bool | None = None) -> None:
+    """Inside the axes for a few solvers; to the right of them for many (campaigns)."""
+    if outside if outside is not None else n > 6:
+        ax.legend(fontsize="small", loc="center left", bbox_to_anchor=(1.01, 0.5))
+    else:
+        ax.legend(fontsize="small", loc="lower right")
+
+
 def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
     plt = _plt()
     paths = []
@@ -76,7 +84,7 @@ def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[path
         ax.set_ylim(-0.02, 1.02)
         ax.set_title(f"{suite}: performance profile over {what} ({n_cases} cases)")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize="small", loc="lower right")
+        _legend(ax, len(rho.columns))
         paths += _save(fig, outdir, f"profile_{metric.removesuffix('_s')}")
     return paths
 
@@ -87,8 +95,9 @@ def _data_profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list
     prepared = prepare_histories(runs)
     for ax, tau in zip(axes.flat, DATA_TAUS):
         grid, d = data_profile(None, tau, prepared=prepared)
-        for lab in d.columns:
-            ax.step(grid, d[lab], where="post", label=lab)
+        for i, lab in enumerate(d.columns):
+            ax.step(grid, d[lab], where="post", label=lab, linestyle=STYLES[(i // 10) % len(STYLES)],
+                    color=f"C{i % 10}")
         ax.set_title(rf"$\tau = 10^{{{int(np.log10(tau))}}}$")
         if grid[-1] > 50 * max(grid[1] if grid.size > 1 else 1.0, 1e-3):
             ax.set_xscale("log")  # budgets spanning decades: linear axes hide the fast solvers
@@ -96,7 +105,8 @@ def _data_profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list
         ax.set_ylabel("fraction of problems solved")
         ax.set_ylim(-0.02, 1.02)
         ax.grid(alpha=0.3)
-    axes.flat[0].legend(fontsize="small", loc="lower right")
+    n_labels = len(prepared["labels"])
+    _legend(axes.flat[1] if n_labels > 6 else axes.flat[0], n_labels)
     fig.suptitle(f"{suite}: data profiles (Moré–Wild), feasible f ≤ f_L + τ (f(x0) − f_L)")
     fig.tight_layout()
     paths = _save(fig, outdir, "data_profile")
@@ -119,7 +129,7 @@ def _reference_data_profile(suite: str, runs: pd.DataFrame, outdir: pathlib.Path
     ax.set_ylabel("fraction of problems solved")
     ax.set_ylim(-0.02, 1.02)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize="small", loc="lower right")
+    _legend(ax, len(d.columns))
     ax.set_title(f"{suite}: solved as in the tables (E^r ≤ {REFERENCE_ER:g} vs f_ref, violation ≤ {FEAS_TOL:g})")
     fig.tight_layout()
     return _save(fig, outdir, "data_profile_reference")
