@@ -42,7 +42,7 @@ def _module_of(path: pathlib.Path) -> str:
     return ".".join(parts)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _imports(path: pathlib.Path, mtime: float) -> tuple[str, ...]:
     """Project modules imported by ``path`` (absolute names)."""
     try:

@@ -69,7 +69,7 @@ def save_baseline(suite: str, out: str | os.PathLike[str] = "results",
 
 def _same(a: object, b: object) -> bool:
     """Equal, where two missing values (runs without counts) are equal too."""
-    na, nb = bool(pd.isna(a)), bool(pd.isna(b))  # type: ignore[call-overload]
+    na, nb = bool(pd.isna(a)), bool(pd.isna(b))
     return na and nb or (not na and not nb and a == b)
 
 
@@ -174,8 +174,11 @@ def format_changes(c: Comparison, show_all: bool = False) -> str:
     lines = [f"{len(c.changes)} runs compared, {int((c.changes['verdict'] != 'same').sum())} changed, "
              f"{len(c.regressions)} regressions; {len(c.only_old)} only in old, {len(c.only_new)} only in new"]
     if len(rows):
-        lines += ["", "| suite | case | solver | N^fg old | N^fg new | solved old | solved new | E^r old | E^r new | verdict |",
-                  "|---|---|---|---|---|---|---|---|---|---|"]
+        lines += [
+            "",
+            "| suite | case | solver | N^fg old | N^fg new | solved old | solved new | E^r old | E^r new | verdict |",
+            "|---|---|---|---|---|---|---|---|---|---|",
+        ]
         for r in rows.itertuples():
             lines.append(f"| {r.suite} | {r.case_id} | {r.solver} | {_num_text(r.nfg_old)} | {_num_text(r.nfg_new)} | "
                          f"{r.success_old} | {r.success_new} | {float(r.rel_error_old):.2e} | "

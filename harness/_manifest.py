@@ -41,7 +41,7 @@ def _git(*args: str) -> str | None:
 
 def environment() -> dict[str, Any]:
     """Versions, git state and machine of this process."""
-    versions = {}
+    versions: dict[str, str | None] = {}
     for p in PACKAGES:
         try:
             versions[p] = importlib.metadata.version(p)
@@ -64,7 +64,7 @@ def environment() -> dict[str, Any]:
 
 
 def now() -> str:
-    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    return _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
 
 
 def record_session(root: pathlib.Path, session: dict[str, Any]) -> pathlib.Path:

@@ -15,9 +15,8 @@ import json
 from typing import Any
 
 from problems import Case, Suite
-from solvers import get_solver_class, make_solver, parse_spec
-
 from problems._catalog import SUITES
+from solvers import get_solver_class, make_solver, parse_spec
 
 from ._codeversion import code_version
 from ._record import _jsonable, settings_hash

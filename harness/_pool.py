@@ -108,7 +108,7 @@ class Slot:
             code = self.proc.exitcode
             self.kill()
             if code == -signal.SIGTERM:  # the campaign is being stopped, not a solver failure:
-                raise KeyboardInterrupt  # store nothing for this run, so a re-run redoes it
+                raise KeyboardInterrupt from None  # store nothing for this run, so a re-run redoes it
             if spec is None:
                 return None
             return spec_row(spec, "error", f"worker process died (exit code {code})",

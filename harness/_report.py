@@ -26,7 +26,8 @@ from ._store import Store
 __all__ = ["write_report", "solver_summary"]
 
 CSS = """body{font-family:system-ui,sans-serif;max-width:1200px;margin:2em auto;padding:0 1em;color:#222}
-table{border-collapse:collapse;margin:.5em 0;font-size:.85em}th,td{border:1px solid #ccc;padding:2px 6px;text-align:right}
+table{border-collapse:collapse;margin:.5em 0;font-size:.85em}
+th,td{border:1px solid #ccc;padding:2px 6px;text-align:right}
 th{background:#f0f0f0}td.flag{background:#ffe3c2;font-weight:bold}figcaption{font-weight:bold;margin-top:1em}
 .notes{font-size:.8em;color:#555}img{max-width:48%;margin:4px;border:1px solid #ddd}nav a{margin-right:1em}
 .err{color:#a00}code{font-size:.85em}"""

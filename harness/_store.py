@@ -18,6 +18,7 @@ import math
 import os
 import pathlib
 import re
+import subprocess
 import tempfile
 import time
 from collections.abc import Iterator
@@ -266,11 +267,29 @@ class Store:
             if self.previous.exists():
                 prev = self._read(path=self.previous)  # raises CorruptStore if both are damaged
                 kept = len(prev)
+            aside = self.root / "runs.parquet"
             if self.parquet.exists():
                 aside = self.root / f"runs.parquet.corrupt-{time.strftime('%Y%m%dT%H%M%S')}"
                 os.replace(self.parquet, aside)
             if self.previous.exists():
                 _atomic_write_bytes(self.parquet, self.previous.read_bytes())
+        had_previous = self.parquet.exists()  # the previous generation was copied into place
         n = self.consolidate() if self.parquet.exists() or self._pending_files() else 0
-        return (f"{self.parquet}: restored the previous generation ({kept} runs) and merged pending runs: {n} runs "
-                f"stored; re-run the suite to redo the runs of the lost merge")
+        if had_previous:
+            return (f"{self.parquet}: restored the previous generation ({kept} runs) and merged pending runs: "
+                    f"{n} runs stored; re-run the suite to redo the runs of the lost merge")
+        # e.g. a fresh clone: runs.prev.parquet is a local copy, never committed
+        hint = (f"; the committed store is intact in git: git checkout -- {self.parquet}"
+                if _tracked_by_git(self.parquet) else "; re-run the suite to redo its runs")
+        return (f"{self.parquet}: no previous generation kept, damaged file moved aside ({aside.name}); "
+                f"{n} pending runs stored{hint}")
+
+
+def _tracked_by_git(path: pathlib.Path) -> bool:
+    """True if ``path`` is committed in a git work tree (so ``git checkout`` can restore it)."""
+    try:
+        done = subprocess.run(["git", "ls-files", "--error-unmatch", path.name], cwd=path.parent,
+                              capture_output=True, timeout=10, check=False)
+    except (OSError, subprocess.SubprocessError):
+        return False
+    return done.returncode == 0

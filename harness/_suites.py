@@ -11,6 +11,7 @@ import dataclasses
 import hashlib
 import importlib
 import importlib.util
+import os
 import pathlib
 import re
 import sys
@@ -25,7 +26,7 @@ __all__ = ["SuiteRef", "load_suite", "suite_module", "SuiteFileError"]
 class SuiteFileError(ImportError):
     """A user's suite file could not be imported (it raised): a bad-input error, in one line."""
 
-_CACHE: dict["SuiteRef", Suite] = {}
+_CACHE: dict[SuiteRef, Suite] = {}
 _FILE_MODULES: dict[str, ModuleType] = {}
 
 
@@ -60,7 +61,7 @@ def _file_module(path: str) -> ModuleType:
     sys.modules[modname] = module  # dataclasses and pickling look modules up here
     try:
         spec.loader.exec_module(module)
-    except Exception as exc:  # the user's code failed: say where, in one line
+    except Exception as exc:  # noqa: BLE001 - the user's code failed: say where, in one line
         del sys.modules[modname]
         tb = [f for f in traceback.extract_tb(exc.__traceback__) if f.filename == str(p)]
         where = f" (line {tb[-1].lineno})" if tb else ""
@@ -105,7 +106,7 @@ def load_suite(ref: SuiteRef) -> Suite:
     return suite
 
 
-def ref_for(name: str | None = None, file: str | pathlib.Path | None = None) -> SuiteRef:
+def ref_for(name: str | None = None, file: str | os.PathLike[str] | None = None) -> SuiteRef:
     """A `SuiteRef` from a catalogue name or a file path (the file's suite name is read)."""
     if file is not None:
         path = str(pathlib.Path(file).resolve())

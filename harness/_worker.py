@@ -32,7 +32,7 @@ _IMPORTED: set[tuple[str, ...]] = set()
 
 
 def _now() -> str:
-    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="microseconds")
+    return _dt.datetime.now(_dt.UTC).isoformat(timespec="microseconds")
 
 
 def compact_history(history_json: str) -> str:
@@ -80,7 +80,7 @@ def execute(spec: RunSpec) -> dict[str, Any]:
         row["history"] = compact_history(row["history"])
         if not math.isfinite(row["f"]) and row["status"] != "error":  # solve() flags these; belt and braces
             row["status"], row["success"] = "error", False
-    except BaseException as exc:  # noqa: BLE001 - recorded, the suite goes on
+    except BaseException as exc:
         if isinstance(exc, (KeyboardInterrupt, SystemExit)):
             raise
         tb = traceback.extract_tb(exc.__traceback__)

@@ -195,7 +195,6 @@ def _cmd_list(a: argparse.Namespace) -> int:
 def _cmd_plot(a: argparse.Namespace) -> int:
     from ._plots import plot
     from ._runner import resolve_suite
-
     from .figures import NoFigurePlugin
 
     ref = resolve_suite(a.suite, a.suite_file)
@@ -222,7 +221,9 @@ def _cmd_repair(a: argparse.Namespace) -> int:
     from ._store import Store
 
     if not (pathlib.Path(a.out) / a.suite).is_dir():
-        raise HarnessArgumentError(f"no directory {pathlib.Path(a.out) / a.suite}: nothing stored for suite {a.suite!r}")
+        raise HarnessArgumentError(
+            f"no directory {pathlib.Path(a.out) / a.suite}: nothing stored for suite {a.suite!r}"
+        )
     print(Store(a.out, a.suite).repair())
     return 0
 

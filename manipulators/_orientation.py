@@ -33,7 +33,7 @@ TWO_PI = 2.0 * np.pi
 _Q_TINY = 1e-300  # a leg with rho = 0 has constant length; keeps the division finite
 
 
-def wrap_pi(a: np.ndarray) -> np.ndarray:
+def wrap_pi(a: np.ndarray | float) -> np.ndarray:
     """Wrap angles to (-pi, pi]."""
     return np.pi - np.mod(np.pi - np.asarray(a, dtype=float), TWO_PI)
 

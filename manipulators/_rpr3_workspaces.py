@@ -26,7 +26,13 @@ from scipy.optimize import least_squares, minimize
 
 from .workspace import Workspace, chord_boundary
 
-__all__ = ["constant_orientation_workspace", "dextrous_workspace", "maximal_workspace", "interior_point", "EmptyWorkspace"]
+__all__ = [
+    "constant_orientation_workspace",
+    "dextrous_workspace",
+    "maximal_workspace",
+    "interior_point",
+    "EmptyWorkspace",
+]
 
 
 class EmptyWorkspace(ValueError):
@@ -64,9 +70,17 @@ def interior_point(C, lo, hi, *, n: int = 64, refine: bool = True):
     k = int(np.argmax(margin))
     u, best = U[k], float(margin[k])
     if refine:
-        res = minimize(lambda x: float(np.max(C(x[None, :]))), u, method="Nelder-Mead",
-                       options={"xatol": 1e-9, "fatol": 1e-12, "maxiter": 400,
-                                "initial_simplex": np.array([u, u + [(hi[0] - lo[0]) / n, 0], u + [0, (hi[1] - lo[1]) / n]])})
+        res = minimize(
+            lambda x: float(np.max(C(x[None, :]))),
+            u,
+            method="Nelder-Mead",
+            options={
+                "xatol": 1e-9,
+                "fatol": 1e-12,
+                "maxiter": 400,
+                "initial_simplex": np.array([u, u + [(hi[0] - lo[0]) / n, 0], u + [0, (hi[1] - lo[1]) / n]]),
+            },
+        )
         if -res.fun > best:
             u, best = res.x, float(-res.fun)
     return np.asarray(u, dtype=float), best
@@ -78,21 +92,25 @@ def _with_info(ws: Workspace, **extra) -> Workspace:
     return dataclasses.replace(ws, info={**dict(ws.info), **extra})
 
 
-def constant_orientation_workspace(m, phi: float, chord: float, *, branch="upper", interior=None, **chord_kw) -> Workspace:
+def constant_orientation_workspace(
+    m, phi: float, chord: float, *, branch="upper", interior=None, **chord_kw
+) -> Workspace:
     """``W^C[phi]`` of design ``m`` (eq. 5.14) by the chord method (Section 5.4.2)."""
     t0 = time.perf_counter()
     phi = float(phi)
     if not np.isfinite(phi):
         raise ValueError(f"phi must be finite (radians), got {phi}")
-    C = lambda U: m.constraints(U, phi, branch=branch)  # noqa: E731
+    C = lambda U: m.constraints(U, phi, branch=branch)
     if interior is None:
         lo, hi = _bbox_of_legs(m, phi)
         if branch == "upper":
             lo[1] = max(lo[1], m.yC)
         interior, margin = interior_point(C, lo, hi)
         if interior is None or margin <= 0:
-            raise EmptyWorkspace(f"3-RPR design {m.design.tolist()} has an empty constant-orientation workspace at phi={phi}"
-                                 f" (largest margin {margin:.3g})")
+            raise EmptyWorkspace(
+                f"3-RPR design {m.design.tolist()} has an empty constant-orientation workspace at phi={phi}"
+                f" (largest margin {margin:.3g})"
+            )
     ws = chord_boundary(C, interior, chord, **chord_kw)
     return _with_info(ws, kind="constant-orientation", phi=phi, interior=np.asarray(interior),
                       time_total=time.perf_counter() - t0, constraint_names=_co_names(branch))
@@ -155,7 +173,7 @@ def dextrous_workspace(m, phi_min: float, phi_max: float, chord: float, *, branc
     if not (np.isfinite(phi_min) and np.isfinite(phi_max) and phi_min <= phi_max):
         raise ValueError(f"need finite phi_min <= phi_max (radians), got [{phi_min}, {phi_max}]")
     if constraints == "legs":
-        C = lambda U: m.dextrous_constraints(U, phi_min, phi_max, branch=branch)  # noqa: E731
+        C = lambda U: m.dextrous_constraints(U, phi_min, phi_max, branch=branch)
         names = _dex_names(branch)
     elif constraints == "orientation":
         def C(U):
@@ -184,7 +202,7 @@ def dextrous_workspace(m, phi_min: float, phi_max: float, chord: float, *, branc
         lo, hi = _bbox_of_legs(m, [phi_min, w_mid, phi_max])
         if branch == "upper":
             lo[1] = max(lo[1], m.yC)
-        Cl = lambda U: m.dextrous_constraints(U, phi_min, phi_max, branch=branch)  # noqa: E731
+        Cl = lambda U: m.dextrous_constraints(U, phi_min, phi_max, branch=branch)
         interior, margin = interior_point(Cl, lo, hi)
         if interior is None or margin <= 0:
             raise EmptyWorkspace(f"3-RPR design {m.design.tolist()} has an empty dextrous workspace over "
@@ -206,7 +224,9 @@ def _orientation_tag(j, constraints, branch, orientation_method="closed"):
             return "interior"
         return "branch"
     if orientation_method == "closed":
-        return {0: "phi_max", 1: "phi_max", 2: "phi_max", 3: "phi_min", 4: "phi_min", 5: "phi_min"}.get(int(j), "branch")
+        return {0: "phi_max", 1: "phi_max", 2: "phi_max", 3: "phi_min", 4: "phi_min", 5: "phi_min"}.get(
+            int(j), "branch"
+        )
     return {0: "phi_max", 1: "phi_min"}.get(int(j), "branch")
 
 
@@ -234,7 +254,7 @@ def maximal_workspace(m, chord: float, *, interior=None, **chord_kw) -> Workspac
     traced (no branch restriction: the orientation is free).
     """
     t0 = time.perf_counter()
-    C = lambda U: m.maximal_constraints(U)  # noqa: E731
+    C = lambda U: m.maximal_constraints(U)
     if interior is None:
         interior, _ = assembled_point(m)
         if not float(C(interior[None, :])[0, 0]) < 0:

@@ -82,24 +82,24 @@ def delta_areas(ws: Workspace | np.ndarray, prescribed: Prescribed) -> tuple[flo
     bc = ws.boundary if isinstance(ws, Workspace) else as_points(ws)
     if bc.shape[0] < 3:
         return float(prescribed.area()), 0.0
-    O = np.asarray(prescribed.centre, dtype=float)
-    beta, rc = polar_angles(bc, O)
+    centre = np.asarray(prescribed.centre, dtype=float)
+    beta, rc = polar_angles(bc, centre)
     rp = prescribed.radius(beta)
     bp = prescribed.points_at(beta)
     out = rc >= rp
     c1, c2 = bc, np.roll(bc, -1, axis=0)
     p1, p2 = bp, np.roll(bp, -1, axis=0)
     o1, o2 = out, np.roll(out, -1)
-    Oa = np.broadcast_to(O, c1.shape)
+    Oa = np.broadcast_to(centre, c1.shape)
     tc = triangle_area(c1, c2, Oa)
     tp = triangle_area(p1, p2, Oa)
-    I = _line_intersection(c1, c2, p1, p2)
+    cross = _line_intersection(c1, c2, p1, p2)
     dwc = np.where(o1 & o2, tc - tp, 0.0)
     dwp = np.where(~o1 & ~o2, tp - tc, 0.0)
     case_c = ~o1 & o2
     case_d = o1 & ~o2
-    dwc += np.where(case_c, triangle_area(c2, p2, I), 0.0) + np.where(case_d, triangle_area(p1, c1, I), 0.0)
-    dwp += np.where(case_c, triangle_area(c1, p1, I), 0.0) + np.where(case_d, triangle_area(p2, c2, I), 0.0)
+    dwc += np.where(case_c, triangle_area(c2, p2, cross), 0.0) + np.where(case_d, triangle_area(p1, c1, cross), 0.0)
+    dwp += np.where(case_c, triangle_area(c1, p1, cross), 0.0) + np.where(case_d, triangle_area(p2, c2, cross), 0.0)
     return float(dwp.sum()), float(dwc.sum())
 
 

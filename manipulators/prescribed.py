@@ -141,7 +141,11 @@ class Prescribed:
         """Translated by ``offset`` (dx, dy), or with its centre placed at ``to``."""
         if (offset is None) == (to is None):
             raise ValueError("moved() needs exactly one of offset=(dx, dy) or to=(x, y)")
-        c = np.asarray(to, dtype=float).reshape(2) if to is not None else np.asarray(self.centre) + np.asarray(offset, dtype=float).reshape(2)
+        c = (
+            np.asarray(to, dtype=float).reshape(2)
+            if to is not None
+            else np.asarray(self.centre) + np.asarray(offset, dtype=float).reshape(2)
+        )
         return dataclasses.replace(self, centre=tuple(c))
 
     def __repr__(self) -> str:

@@ -77,7 +77,7 @@ class RPR2:
     l_max: tuple[float, float] = (7.0, 7.0)
 
     def __post_init__(self) -> None:
-        set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731  (frozen)
+        set_ = lambda k, v: object.__setattr__(self, k, v)  # the dataclass is frozen
         for k in ("xA", "yA", "xB"):
             v = float(getattr(self, k))
             if not np.isfinite(v):
@@ -225,7 +225,7 @@ class RPR2:
         # a trace is redone at half the chord, up to `REFINE` times [OWN: Appendix C
         # assumes d small against the workspace's features].
         d = float(chord)
-        for k in range(REFINE):
+        for _ in range(REFINE):
             if ws.info.get("closed") and ws.n_boundary >= 3 and bool(ws.contains(u0[None, :])[0]):
                 break
             d *= 0.5

@@ -83,7 +83,7 @@ class RPR3:
 
     # ------------------------------------------------------------------ construction
     @classmethod
-    def from_design(cls, d, **limits) -> "RPR3":
+    def from_design(cls, d, **limits) -> RPR3:
         """Build from the design vector ``d = [x_C, y_C, x_D, x_E, r]`` (eq. 5.36)."""
         d = np.asarray(d, dtype=float).ravel()
         if d.shape != (5,):
@@ -91,7 +91,7 @@ class RPR3:
         return cls(*d, **limits)
 
     @classmethod
-    def named(cls, name: str) -> "RPR3":
+    def named(cls, name: str) -> RPR3:
         """Design M1, M2 or M3 of Table 5.1 with the Section 5.5.4 leg limits."""
         if name not in M_DESIGNS:
             raise ValueError(f"unknown design {name!r}; valid: {', '.join(M_DESIGNS)}")
@@ -241,8 +241,8 @@ class RPR3:
         def viol(w):  # w: (k, m) -> (k, m)
             out = None
             for i, (P, Q, alpha) in enumerate(legs):
-                l = np.sqrt(np.maximum(P[:, None] + Q[:, None] * np.cos(w - alpha[:, None]), 0.0))
-                vi = np.maximum(l - self.lmax[i], self.lmin[i] - l)
+                length = np.sqrt(np.maximum(P[:, None] + Q[:, None] * np.cos(w - alpha[:, None]), 0.0))
+                vi = np.maximum(length - self.lmax[i], self.lmin[i] - length)
                 out = vi if out is None else np.maximum(out, vi)
             return out
 

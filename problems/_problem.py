@@ -97,7 +97,7 @@ class Problem:
     n_eq: int | None = None
 
     def __post_init__(self) -> None:
-        set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731  (frozen dataclass)
+        set_ = lambda k, v: object.__setattr__(self, k, v)  # the dataclass is frozen
         if not isinstance(self.name, str) or not self.name:
             raise ProblemError("Problem.name must be a non-empty string")
         x0 = _as_vector("x0", self.x0)

@@ -32,7 +32,9 @@ COMPROMISE_TOL = 1e-6  # a subproblem solution violating P[i]'s constraints by m
 
 
 def _finite(ev: dict[str, Any]) -> bool:
-    return bool(np.isfinite(ev["f"]) and all(np.all(np.isfinite(ev[k])) for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac")))
+    return bool(
+        np.isfinite(ev["f"]) and all(np.all(np.isfinite(ev[k])) for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac"))
+    )
 
 
 @dataclasses.dataclass(frozen=True)
@@ -99,7 +101,9 @@ class DynamicQ(AbstractSolver):
         if not (isinstance(self.max_iter, (int, np.integer)) and self.max_iter >= 1):
             raise ValueError(f"dynamic-q: max_iter must be an integer >= 1, got {self.max_iter!r}")
         if not (isinstance(self.nonfinite_backtrack, (int, np.integer)) and self.nonfinite_backtrack >= 0):
-            raise ValueError(f"dynamic-q: nonfinite_backtrack must be an integer >= 0, got {self.nonfinite_backtrack!r}")
+            raise ValueError(
+                f"dynamic-q: nonfinite_backtrack must be an integer >= 0, got {self.nonfinite_backtrack!r}"
+            )
         if not isinstance(self.subsolver, LFOPC):
             raise ValueError(f"dynamic-q: subsolver must be an LFOPC instance, got {type(self.subsolver).__name__}")
         if self.normalize_constraints not in NORMALIZE:

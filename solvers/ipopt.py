@@ -216,10 +216,20 @@ class Ipopt(AbstractSolver):
         ]
         xs = ca.MX.sym("x", n)
         nlp: dict[str, Any] = {"x": xs, "f": keep[0](xs)}
-        opts: dict[str, Any] = {"grad_f": keep[1], "print_time": False, "verbose_init": False, "show_eval_warnings": False,
-                                "ipopt": {"print_level": 0, "sb": "yes", "tol": self.tol, "max_iter": self.max_iter,
-                                          "bound_relax_factor": self.bound_relax_factor,
-                                          "mu_strategy": self.mu_strategy}}
+        opts: dict[str, Any] = {
+            "grad_f": keep[1],
+            "print_time": False,
+            "verbose_init": False,
+            "show_eval_warnings": False,
+            "ipopt": {
+                "print_level": 0,
+                "sb": "yes",
+                "tol": self.tol,
+                "max_iter": self.max_iter,
+                "bound_relax_factor": self.bound_relax_factor,
+                "mu_strategy": self.mu_strategy,
+            },
+        }
         if m:
             keep.append(_PyFunction("g", [sx], [dense(m, 1)], lambda x: [cons(x)], errors, jac=cons_jac))
             keep.append(_PyFunction("jac_g", [sx, sp0], [dense(m, 1), dense(m, n)],

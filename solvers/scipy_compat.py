@@ -37,11 +37,11 @@ def _stack_jac(funcs: Sequence[Callable | None], args: tuple, sign: float) -> Ca
 def _to_problem(fun, x0, args=(), jac=None, bounds=None, constraints=()) -> Problem:
     """SciPy's minimize arguments -> Problem (HS/SciPy c(x) >= 0 becomes g = -c <= 0)."""
     if callable(jac):
-        gradient = lambda x: np.asarray(jac(x, *args), dtype=float)  # noqa: E731
-        objective = lambda x: float(fun(x, *args))  # noqa: E731
+        gradient = lambda x: np.asarray(jac(x, *args), dtype=float)
+        objective = lambda x: float(fun(x, *args))
     elif jac is True:
-        objective = lambda x: float(fun(x, *args)[0])  # noqa: E731
-        gradient = lambda x: np.asarray(fun(x, *args)[1], dtype=float)  # noqa: E731
+        objective = lambda x: float(fun(x, *args)[0])
+        gradient = lambda x: np.asarray(fun(x, *args)[1], dtype=float)
     else:
         objective, gradient = (lambda x: float(fun(x, *args))), None
     if isinstance(constraints, dict):

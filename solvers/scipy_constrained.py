@@ -72,8 +72,11 @@ class ScipySLSQP(AbstractSolver):
         -1: Status.FAILED,     # gradient evaluation required (internal; never final)
     }
 
-    ftol: float = option(1e-10, "SLSQP 'ftol': precision goal for f in the stopping test "
-                         "(relative to the merit function)", "SciPy default 1e-6; tightened so E^r <= 1e-5 is reachable")
+    ftol: float = option(
+        1e-10,
+        "SLSQP 'ftol': precision goal for f in the stopping test (relative to the merit function)",
+        "SciPy default 1e-6; tightened so E^r <= 1e-5 is reachable",
+    )
     maxiter: int = option(500, "iteration cap (SLSQP major iterations)", "SciPy default 100")
 
     def __post_init__(self) -> None:

@@ -31,7 +31,9 @@ class SQSD(AbstractSolver):
     family = "thesis"
     handles = frozenset()
 
-    rho: float = option(1.0, "step limit; c_0 = ||grad f(x0)||/rho makes the first step of length rho", "Alg. 2.2, Table 2.1")
+    rho: float = option(
+        1.0, "step limit; c_0 = ||grad f(x0)||/rho makes the first step of length rho", "Alg. 2.2, Table 2.1"
+    )
     eps_g: float = option(1e-5, "stop when ||grad f|| < eps_g", "Alg. 2.2 step 1, Sec. 2.5")
     eps_x: float = option(1e-8, "stop when ||x^k - x^(k-1)|| < eps_x", "Alg. 2.2 step 2, Sec. 2.5")
     max_iter: int = option(200_000, "iteration cap (N^fg cap)", "Tables 2.1-2.2 (20000-100000 for SD/FR/PR)")

@@ -97,7 +97,14 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
             x = _x(r["x"])
             if x.size == 5:
                 _draw_ws(ax, design_o(x), 0.1, lw=0.8, label=f"{r['solver']} {r['start']} f={r['f']:.3f}")
-        out.append(_finish(fig, ax, outdir / f"fig_{num}_{prob[-1]}_workspaces.png", f"Fig. {num.replace('_', '.')}: {title} optima"))
+        out.append(
+            _finish(
+                fig,
+                ax,
+                outdir / f"fig_{num}_{prob[-1]}_workspaces.png",
+                f"Fig. {num.replace('_', '.')}: {title} optima",
+            )
+        )
 
     # Figs. 4.12 / 4.13: P synthesis workspaces with kappa^-1 contours (start and Dynamic-Q optima)
     fig, ax = plt.subplots(figsize=(6, 5))
@@ -110,7 +117,9 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         sub = ok[(ok["problem"] == f"rpr2-p{name[-1]}")] if len(ok) else ok
         if not len(sub):
             continue
-        best = sub[sub["solver"] == "dynamic-q"] if (sub["solver"] == "dynamic-q").any() else sub.sort_values("f").head(1)
+        best = (
+            sub[sub["solver"] == "dynamic-q"] if (sub["solver"] == "dynamic-q").any() else sub.sort_values("f").head(1)
+        )
         x = _x(best.iloc[0]["x"])
         if x.size != 3:
             continue
@@ -122,8 +131,13 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
                            f"Figs. 4.12(b)/4.13: {name}, optimal workspace, kappa^-1"))
 
     # Convergence histories: Figs. 4.5-4.8 (O per start), 4.11 (E), 4.14 (P)
-    groups = [("rpr2-o", sp, f"4_{5 + i}") for i, sp in enumerate(STARTS)]
-    groups += [("rpr2-e", None, "4_11"), ("rpr2-p1", None, "4_14a"), ("rpr2-p2", None, "4_14b"), ("rpr2-p3", None, "4_14c")]
+    groups: list[tuple[str, str | None, str]] = [("rpr2-o", sp, f"4_{5 + i}") for i, sp in enumerate(STARTS)]
+    groups += [
+        ("rpr2-e", None, "4_11"),
+        ("rpr2-p1", None, "4_14a"),
+        ("rpr2-p2", None, "4_14b"),
+        ("rpr2-p3", None, "4_14c"),
+    ]
     for prob, start, num in groups:
         sub = ok[(ok["problem"] == prob)] if len(ok) else ok
         if start is not None and len(sub):

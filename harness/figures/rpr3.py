@@ -132,7 +132,13 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
     for kind in ("so", "mo", "d"):
         s = SETTINGS[kind]
         fig, ax = plt.subplots(figsize=(5, 4))
-        _panel(ax, kind, np.asarray(s["start"]), ["P1", "P2", "P3"], f"{kind.upper()} synthesis start d0 {list(s['start'])}")
+        _panel(
+            ax,
+            kind,
+            np.asarray(s["start"]),
+            ["P1", "P2", "P3"],
+            f"{kind.upper()} synthesis start d0 {list(s['start'])}",
+        )
         p = outdir / f"fig_{kind}_start.png"
         fig.savefig(p, dpi=130, bbox_inches="tight")
         plt.close(fig)

@@ -95,7 +95,7 @@ def fig_6_3(outdir: pathlib.Path) -> pathlib.Path:
 
     from manipulators.cable import CableRobot, loads, thesis_robot
 
-    robot = CableRobot([[1, 0.15], [-1, 0.15], [-1, -0.15], [1, -0.15]], thesis_robot(4).platform_points)
+    robot = CableRobot(np.array([[1, 0.15], [-1, 0.15], [-1, -0.15], [1, -0.15]]), thesis_robot(4).platform_points)
     fig, axes = plt.subplots(1, 3, figsize=(9, 3.4))
     for ax, phi in zip(axes, (0.0, 0.2, 0.4)):
         _frame(ax, robot)
@@ -115,7 +115,7 @@ def _synthesis_figs(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Pa
     from manipulators.cable import design_robot, loads
     from manipulators.synthesis.tdpm_suite import SETTINGS, SUITE
 
-    out = []
+    out: list[pathlib.Path] = []
     if runs is None or runs.empty or "problem" not in runs:
         return out
     for (n, load), num in SYNTH_FIGS.items():
@@ -131,7 +131,8 @@ def _synthesis_figs(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Pa
         fig, axes = plt.subplots(1, 2, figsize=(7, 3.6))
         for ax, d, lab in ((axes[0], d0, "(a) start"), (axes[1], np.asarray(best.x, dtype=float), "(b) optimized")):
             robot = design_robot(d)
-            ws = robot.dextrous_workspace(*s["phi"], loads()[load], resolution=s["resolution"], slices=s["slices"])
+            ws = robot.dextrous_workspace(s["phi"][0], s["phi"][1], loads()[load],
+                                          resolution=s["resolution"], slices=s["slices"])
             _frame(ax, robot)
             _draw_grid(ax, ws)
             for c in robot.frame_points:
@@ -149,9 +150,11 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
     matplotlib.use("Agg")
     outdir = pathlib.Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = [fig_6_3(outdir),
-             _grid_of_workspaces(3, "grid", outdir, "fig_6_4", "Fig. 6.4: 3-cable TDPM, discretization method (m = 50)"),
-             _grid_of_workspaces(4, "grid", outdir, "fig_6_5", "Fig. 6.5: 4-cable TDPM, discretization method (m = 50)"),
-             _grid_of_workspaces(3, "chord", outdir, "fig_6_8", "Fig. 6.8: 3-cable TDPM, chord method"),
-             _grid_of_workspaces(4, "chord", outdir, "fig_6_9", "Fig. 6.9: 4-cable TDPM, chord method")]
+    paths = [
+        fig_6_3(outdir),
+        _grid_of_workspaces(3, "grid", outdir, "fig_6_4", "Fig. 6.4: 3-cable TDPM, discretization method (m = 50)"),
+        _grid_of_workspaces(4, "grid", outdir, "fig_6_5", "Fig. 6.5: 4-cable TDPM, discretization method (m = 50)"),
+        _grid_of_workspaces(3, "chord", outdir, "fig_6_8", "Fig. 6.8: 3-cable TDPM, chord method"),
+        _grid_of_workspaces(4, "chord", outdir, "fig_6_9", "Fig. 6.9: 4-cable TDPM, chord method"),
+    ]
     return paths + _synthesis_figs(runs, outdir)

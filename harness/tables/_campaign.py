@@ -75,8 +75,8 @@ def _summary(df: pd.DataFrame, order: list[str]) -> Table:
         if mine.empty:
             continue
         out = mine["outcome"].value_counts()
-        nfg_common = [count(v) for v in mine.loc[mine["case_id"].isin(common), "nfg"]]
-        nfg_common = [v for v in nfg_common if v is not None]
+        counts = [count(v) for v in mine.loc[mine["case_id"].isin(common), "nfg"]]
+        nfg_common = [v for v in counts if v is not None]
         rows.append({
             "solver": lab, "problems": len(mine), "solved": int(out.get("solved", 0)),
             "solved vs known optimum": int(((mine["outcome"] == "solved")

@@ -108,7 +108,7 @@ def _notes(table: Table) -> list[str]:
 
 def to_markdown(table: Table) -> str:
     header, body = _grid(table, lambda c: f"{c} {MARK}")
-    esc = lambda s: s.replace("|", "\\|")  # noqa: E731
+    esc = lambda s: s.replace("|", "\\|")
     lines = [f"**{table.title}**", "", "| " + " | ".join(map(esc, header)) + " |",
              "|" + "|".join("---" for _ in header) + "|"]
     lines += ["| " + " | ".join(map(esc, r)) + " |" for r in body]
@@ -133,7 +133,7 @@ def _tex(s: str) -> str:
 
 def to_latex(table: Table) -> str:
     header, body = _grid(table, lambda c: "\x00" + c)
-    cell = lambda c: (r"\textbf{" + _tex(c[1:]) + r"}$^\dagger$") if c.startswith("\x00") else _tex(c)  # noqa: E731
+    cell = lambda c: (r"\textbf{" + _tex(c[1:]) + r"}$^\dagger$") if c.startswith("\x00") else _tex(c)
     lines = [r"\begin{table}[htbp]", r"\centering", r"\caption{" + _tex(table.title) + "}",
              r"\begin{tabular}{" + "l" * len(header) + "}", r"\toprule",
              " & ".join(_tex(h) for h in header) + r" \\", r"\midrule"]
@@ -149,7 +149,7 @@ def to_latex(table: Table) -> str:
 
 def to_html(table: Table) -> str:
     header, body = _grid(table, lambda c: "\x00" + c)
-    td = lambda c: (f'<td class="flag">{html.escape(c[1:])} {MARK}</td>' if c.startswith("\x00")  # noqa: E731
+    td = lambda c: (f'<td class="flag">{html.escape(c[1:])} {MARK}</td>' if c.startswith("\x00")
                     else f"<td>{html.escape(c)}</td>")
     rows = "\n".join("<tr>" + "".join(td(c) for c in r) + "</tr>" for r in body)
     head = "<tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr>"

@@ -29,7 +29,8 @@ METHODS = {"SQSD": "sqsd", "SD": "sd", "FR": "fletcher-reeves", "PR": "polak-rib
 SCIPY = ("scipy-cg", "scipy-bfgs", "scipy-lbfgsb")
 
 NOTES = [
-    "Tolerances (docs/appendix_a.md): SQSD N^fg within 15% of the thesis for problems 1-11 and problem 12 with n <= 200, "
+    "Tolerances (docs/appendix_a.md): SQSD N^fg within 15% of the thesis for problems 1-11 and problem 12 "
+    "with n <= 200, "
     "within 50% otherwise; SD/FR/PR N^fg within 50% where the thesis converged; E^r (or I^inf) no worse than "
     "max(10 x thesis, 1e-8); where the thesis printed '> N' (no convergence) ours must not converge either. "
     "A cell outside its tolerance is flagged.",
@@ -168,7 +169,9 @@ def _thesis_table(runs: pd.DataFrame, table_id: str, methods: tuple[str, ...], n
             flags.append(frow)
     frame = pd.DataFrame(rows).fillna("")
     flag_frame = pd.DataFrame(flags).reindex(columns=frame.columns).fillna(False).astype(bool)
-    summary = [f"{m}: {sum(v)} of {len(v)} rows within tolerance (N^fg and E^r/I^inf)." for m, v in verdicts.items() if v]
+    summary = [
+        f"{m}: {sum(v)} of {len(v)} rows within tolerance (N^fg and E^r/I^inf)." for m, v in verdicts.items() if v
+    ]
     return Table(name=name, title=title, frame=frame, flags=flag_frame, notes=[*summary, *NOTES])
 
 
@@ -190,7 +193,8 @@ def _scipy_table(runs: pd.DataFrame) -> Table:
         "Established solvers on the Appendix A cases, same eps_g and caps as the thesis rows (eps_x has no SciPy "
         "equivalent). N^fg from the evaluation wrapper; SQSD repeated for reference. E^r is eq. (2.34); for problem 14 "
         "with n >= 40 the error column is I^inf = ||x* - x^c||_inf.",
-        "scipy-bfgs updates a dense n x n matrix with O(n^3) work per iteration and is skipped above n = 200 ('—'). SciPy's L-BFGS-B also stops on a "
+        "scipy-bfgs updates a dense n x n matrix with O(n^3) work per iteration and is skipped above n = 200 ('—'). "
+        "SciPy's L-BFGS-B also stops on a "
         "relative reduction of f below ftol = 2.2e-9 (its default), which can end runs before eps_g is met.",
         "With eps_g = 1e-75 (problem 12 n = 50000, problems 14) SciPy's methods end on a line-search failure "
         "('precision loss'), reported as status failed.",

@@ -49,14 +49,15 @@ SOLVER_ORDER = ("dynamic-q", "dynamic-q-plus", "lfopc", "etopc", "scipy-slsqp", 
 
 # Known reasons for differences, by problem (cited in the notes when the problem is listed).
 REASONS = {
-    "hs002": "two minima: the global one (x1 > 0) and the local one f = 4.9412 (x1 < 0) that the thesis's Dynamic-Q found",
+    "hs002": "two minima: the global one (x1 > 0) and the local one f = 4.9412 (x1 < 0) "
+    "that the thesis's Dynamic-Q found",
     "hs013": "degenerate (LICQ fails at x* = (1, 0)); a violation of 1e-12..1e-8 buys a lower f, so the count depends "
-             "on how a method treats near-feasible points (the thesis's Dynamic-Q hit its step cap here)",
+    "on how a method treats near-feasible points (the thesis's Dynamic-Q hit its step cap here)",
     "hs055": "rank-deficient equalities: SLSQP's least-squares subproblem is sensitive to rounding here (measured: "
-             "46 evaluations with a multithreaded BLAS, 148 with one BLAS thread); local minimum 20/3 at the other "
-             "end of the feasible segment",
+    "46 evaluations with a multithreaded BLAS, 148 with one BLAS thread); local minimum 20/3 at the other "
+    "end of the feasible segment",
     "hs106": "badly scaled (x up to 1e4); the thesis's step limit for 106 is our reading rho = 100. The thesis's "
-             "E^r = 1.18e-5 is against the HS book's 7049.33, which is not optimal (f_act here = 7049.248)",
+    "E^r = 1.18e-5 is against the HS book's 7049.33, which is not optimal (f_act here = 7049.248)",
     "hs072": "step limit rho = 100 by our reading of the garbled Sec. 3.4 sentence",
 }
 
@@ -155,7 +156,8 @@ def tables(runs: pd.DataFrame) -> list[Table]:
         pids = [p for p in thesis if p != "svanberg"]
     by_key = {(r["problem"], r["solver"]): r for r in runs.to_dict("records")} if not runs.empty else {}
 
-    rows, flags, per_solver = [], [], {s: [] for s in solvers}
+    rows, flags = [], []
+    per_solver: dict[str, list[dict[str, Any]]] = {s: [] for s in solvers}
     ratio_notes: list[str] = []
     for pid in pids:
         th = thesis.get(pid, {})
@@ -169,8 +171,8 @@ def tables(runs: pd.DataFrame) -> list[Table]:
             if t is None:
                 row.update({f"{label} N^fg": "", f"{label} f*": "", f"{label} E^r": ""})
             else:
-                nfg = "" if not math.isfinite(t["nfg"]) else f"{int(t['nfg'])}"
-                row[f"{label} N^fg"] = nfg + t["flag"]
+                nfg_th = "" if not math.isfinite(t["nfg"]) else f"{int(t['nfg'])}"
+                row[f"{label} N^fg"] = nfg_th + t["flag"]
                 row[f"{label} f*"] = _fmt(t["f_star"], ".3g") if math.isfinite(t["f_star"]) else t["flag"]
                 row[f"{label} E^r"] = ("<" if t["lt"] else "") + _fmt(t["er"], ".2e")
             flag.update({f"{label} N^fg": False, f"{label} f*": False, f"{label} E^r": False})
@@ -195,8 +197,10 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                 if ratio > RATIO_NOTE or ratio < 1 / RATIO_NOTE:
                     differs = True
                     why = REASONS.get(pid, "")
-                    outcome = f" (ours '{mark or 'solved'}', thesis '{t['flag'] or 'solved'}')" if mark != t["flag"] else ""
-                    ratio_notes.append(f"HS{int(pid[2:])}, {s} vs {THESIS_METHODS[ref_m]}: N^fg {nfg} vs "
+                    outcome = (
+                        f" (ours '{mark or 'solved'}', thesis '{t['flag'] or 'solved'}')" if mark != t["flag"] else ""
+                    )
+                    ratio_notes.append(f"HS{int(pid[2:])}, {s} vs {THESIS_METHODS[str(ref_m)]}: N^fg {nfg} vs "
                                        f"{int(t['nfg'])} ({ratio:.2f}x){outcome}" + (f" - {why}" if why else ""))
             flag.update({f"{s} N^fg": differs, f"{s} f*": False, f"{s} E^r": mark not in ("", "*")})
         rows.append(row)

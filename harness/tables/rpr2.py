@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -46,8 +47,17 @@ def _decoded(runs: pd.DataFrame | None) -> pd.DataFrame:
     """A copy of the stored runs with ``x`` as lists (the store keeps it as JSON text)."""
     runs = runs.copy() if runs is not None else pd.DataFrame()
     if "x" in runs:
-        runs["x"] = runs["x"].apply(lambda v: list(json.loads(v)) if isinstance(v, str) else list(v) if v is not None else [])
+        runs["x"] = runs["x"].apply(
+            lambda v: list(json.loads(v)) if isinstance(v, str) else list(v) if v is not None else []
+        )
     return runs
+
+
+def _area_wp() -> float:
+    """area(W_p) of P1, the prescribed workspace of the O and E problems (Sec. 4.5-4.6)."""
+    from manipulators.prescribed import P1
+
+    return P1.area()
 
 
 def _evaluate(kind, x, prescribed="P1"):
@@ -76,7 +86,8 @@ def _ours(runs: pd.DataFrame, problem: str, start: str) -> pd.DataFrame:
 
 
 def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
-    rows, flags = [], []
+    rows: list[dict[str, Any]] = []
+    flags: list[bool] = []
     th = thesis[thesis["start"] == start]
     for _, t in th.iterrows():  # the thesis's rows, recomputed exactly
         d = [float(t[c]) for c in ("x_A", "y_A", "x_B", "l1_min", "l2_min")]
@@ -100,8 +111,11 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
     if len(frame):
         fl["f* (disc.)"] = flags
     th_rows = frame[frame["source"] == "thesis"] if len(frame) else frame
-    same = sum(1 for _, r in th_rows.iterrows()
-               if r["f ours at d* (disc.)"] != "" and abs(float(r["f ours at d* (disc.)"]) - float(r["f* (disc.)"])) <= 1e-4)
+    same = sum(
+        1
+        for _, r in th_rows.iterrows()
+        if r["f ours at d* (disc.)"] != "" and abs(float(r["f ours at d* (disc.)"]) - float(r["f* (disc.)"])) <= 1e-4
+    )
     ours = _ours(runs, "rpr2-o", start)
     mine = ours[ours["solver"].isin(list(THESIS_NAMES.values())) & (ours["status"] != "not_applicable")]
     above = [f"{r['solver']} {float(r['f']):.4f} ({r['status']})" for _, r in mine.iterrows()
@@ -113,17 +127,23 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
     return Table(
         name=f"table_{O_TABLES[start].replace('.', '_')}",
         title=f"Table {O_TABLES[start]}: O synthesis from {start} (chord 0.5, triangle scheme)",
-        frame=frame, flags=fl,
-        notes=["f* (disc.) is the objective minimized: 0.5 dW_p + 0.5 dW_c by the triangle scheme (4.9) on "
-               "the chord-0.5 boundary; 'f ours at d*' recomputes it with our chord method at the printed d* (it "
-               f"equals the thesis's f* to 1e-4 for {same} of the {len(th_rows)} thesis rows here; elsewhere the "
-               "4-digit d* falls on a different number of chord points), 'f exact' uses exact annulus geometry.",
-               f"Flagged: a thesis algorithm of ours ending above {O_LIMIT} (the tolerance of docs/manipulators.md). {verdict} "
-               "ETOPC is a reconstruction (Sec. 4.4 gives no details).",
-               "SLSQP and Ipopt ending at 2.483 = area(W_p)/2 stepped to a design with an empty workspace "
-               "(dW_c = 0, dW_p = area(W_p)), a flat region where every difference gradient is 0.",
-               "Complex [84] is the literature value of Gosselin and Guillot.",
-               "N^g counts gradient evaluations (forward differences, Gamma = 1e-5); N^fg distinct points."])
+        frame=frame,
+        flags=fl,
+        notes=[
+            "f* (disc.) is the objective minimized: 0.5 dW_p + 0.5 dW_c by the triangle scheme (4.9) on "
+            "the chord-0.5 boundary; 'f ours at d*' recomputes it with our chord method at the printed d* (it "
+            f"equals the thesis's f* to 1e-4 for {same} of the {len(th_rows)} thesis rows here; elsewhere the "
+            "4-digit d* falls on a different number of chord points), 'f exact' uses exact annulus geometry.",
+            f"Flagged: a thesis algorithm of ours ending above {O_LIMIT} (the tolerance of docs/manipulators.md). "
+            f"{verdict} "
+            "ETOPC is a reconstruction (Sec. 4.4 gives no details).",
+            f"SLSQP and Ipopt ending at {_area_wp() / 2:.3f} = area(W_p)/2 stepped to a design with an empty "
+            "workspace "
+            "(dW_c = 0, dW_p = area(W_p)), a flat region where every difference gradient is 0.",
+            "Complex [84] is the literature value of Gosselin and Guillot.",
+            "N^g counts gradient evaluations (forward differences, Gamma = 1e-5); N^fg distinct points.",
+        ],
+    )
 
 
 def _polish(x) -> dict:
@@ -146,7 +166,7 @@ def _span(vals, fmt=".2f") -> str:
 def _e_reading(minima: list, pols: dict) -> str:
     """The note reading the exact polish of the Dynamic-Q d* (ours and the thesis's) against
     the exact problem's local minima ``(f, d, count)``."""
-    get = lambda keys, k: [float(pols[q].get(k, math.nan)) for q in keys if q in pols]  # noqa: E731
+    get = lambda keys, k: [float(pols[q].get(k, math.nan)) for q in keys if q in pols]
     desc = [f"f = {fm:.4f} at y_A = {dm[1]:.3g}, x_B - x_A = {abs(dm[2] - dm[0]):.3g}" for fm, dm, _ in minima]
     text = f"Reading: the exact problem has {len(minima)} local minima found ({'; '.join(desc)})."
     from manipulators.prescribed import P1
@@ -154,7 +174,7 @@ def _e_reading(minima: list, pols: dict) -> str:
     if minima and abs(minima[0][1][1] - float(P1.points(4096)[:, 1].min())) < 1e-6:
         text += (" The lowest puts the base line through W_p's lowest point (W_p touches the singular line "
                  "y = y_A, kappa^-1 = 0 there): none of the thesis's or our runs reaches it.")
-    reached = {}
+    reached: dict[str, Any] = {}
     for q, pol in pols.items():
         near = [m for m in minima if abs(m[0] - float(pol.get("f", math.nan))) < 1e-4]
         reached.setdefault(f"{near[0][0]:.4f}" if near else "elsewhere", []).append(q)
@@ -177,7 +197,8 @@ def _e_reading(minima: list, pols: dict) -> str:
 
 def _e_dq_summary(runs: pd.DataFrame, thesis: pd.DataFrame) -> str:
     """Which starts Dynamic-Q reproduces (f* within E_REL, exact dW_p <= 0.01), with base widths."""
-    good, bad = [], []
+    good: list[str] = []
+    bad: list[str] = []
     for _, t in thesis.iterrows():
         r = _ours(runs, "rpr2-e", t["start"])
         r = r[r["solver"] == "dynamic-q"]
@@ -206,7 +227,8 @@ def _compromises(row) -> str:
 def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
     from manipulators.synthesis.rpr2_suite import exact_optimum
 
-    rows, flags = [], []
+    rows: list[dict[str, Any]] = []
+    flags: list[bool] = []
     opt = exact_optimum("e")  # the exact model's minima: no chord method, analytic area (4.14)
     for i, (f_m, d_m, count) in enumerate(opt["minima"]):
         ev = _evaluate("e", d_m)
@@ -233,21 +255,48 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
         start = t["start"]
         d = [float(t[c]) for c in ("x_A", "y_A", "x_B", "l1_min", "l2_min")]
         ev = _evaluate("e", d)
-        rows.append({"start": start, "source": "thesis", "solver": "Dynamic-Q", "N^g": t["ng"], "N^fg": "",
-                     "f*": t["f_star"], "h*": t["h_star"], "f exact": _num(ev.get("dwc_exact")),
-                     "dW_p exact": _num(ev.get("dwp_exact"), ".3g"), **polished(d, ("thesis", start)), "d*": _fmt_d(d), "status": ""})
+        rows.append(
+            {
+                "start": start,
+                "source": "thesis",
+                "solver": "Dynamic-Q",
+                "N^g": t["ng"],
+                "N^fg": "",
+                "f*": t["f_star"],
+                "h*": t["h_star"],
+                "f exact": _num(ev.get("dwc_exact")),
+                "dW_p exact": _num(ev.get("dwp_exact"), ".3g"),
+                **polished(d, ("thesis", start)),
+                "d*": _fmt_d(d),
+                "status": "",
+            }
+        )
         flags.append(False)
         f_th = float(t["f_star"])
         for _, r in _ours(runs, "rpr2-e", start).iterrows():
             applicable = r["status"] != "not_applicable" and len(r["x"]) == 5
             ev = _evaluate("e", r["x"]) if applicable else {}
-            rows.append({"start": start, "source": "ours", "solver": r["solver"], "N^g": count_cell(r["ng"]), "N^fg": count_cell(r["nfg"]),
-                         "f*": _num(r["f"]), "h*": _num(ev.get("h"), ".2g"), "f exact": _num(ev.get("dwc_exact")),
-                         "dW_p exact": _num(ev.get("dwp_exact"), ".3g"),
-                         **(polished(r["x"], ("ours", start) if r["solver"] == "dynamic-q" else None) if applicable
-                            else {"exact local min": "", "f nearest enclosing": "", "box drop": ""}),
-                         "d*": _fmt_d(r["x"]) if applicable else "", "status": _status(r),
-                         "compromise P[i]": _compromises(r) if r["solver"] == "dynamic-q" else ""})
+            rows.append(
+                {
+                    "start": start,
+                    "source": "ours",
+                    "solver": r["solver"],
+                    "N^g": count_cell(r["ng"]),
+                    "N^fg": count_cell(r["nfg"]),
+                    "f*": _num(r["f"]),
+                    "h*": _num(ev.get("h"), ".2g"),
+                    "f exact": _num(ev.get("dwc_exact")),
+                    "dW_p exact": _num(ev.get("dwp_exact"), ".3g"),
+                    **(
+                        polished(r["x"], ("ours", start) if r["solver"] == "dynamic-q" else None)
+                        if applicable
+                        else {"exact local min": "", "f nearest enclosing": "", "box drop": ""}
+                    ),
+                    "d*": _fmt_d(r["x"]) if applicable else "",
+                    "status": _status(r),
+                    "compromise P[i]": _compromises(r) if r["solver"] == "dynamic-q" else "",
+                }
+            )
             bad = (r["solver"] == "dynamic-q" and applicable
                    and not (abs(float(r["f"]) - f_th) <= E_REL * f_th and ev.get("dwp_exact", 1.0) <= 0.01))
             flags.append(bool(bad))
@@ -255,37 +304,45 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
     fl = pd.DataFrame(False, index=frame.index, columns=frame.columns)
     if len(frame):
         fl["f*"] = flags
-    return Table(name="table_4_7", title="Table 4.7: E synthesis (chord 0.1): min dW_c s.t. dW_p = 0",
-                 frame=frame, flags=fl,
-                 notes=["f* = dW_c and h* = dW_p by the triangle scheme; 'exact' columns from exact geometry.",
-                        f"Flagged: Dynamic-Q f* not within {E_REL:.0%} of the thesis or exact dW_p > 0.01.",
-                        "'(exact-model optimum)', '(exact-model local min)': (4.14) solved in exact, smooth form "
-                        "(rpr2_suite.exact_optimum): min area(W_c) - area(W_p), area(W_c) in closed form "
-                        "(RPR2.exact_area: lens areas by inclusion-exclusion, halved), subject to every leg length "
-                        "on 512 points of W_p's boundary within [l_min, 1.5 l_min] and W_p above the base line - "
-                        "exactly W_p inside W_c, so h = 0. SciPy SLSQP with analytic derivatives from SP1-SP4, the "
-                        f"thesis's four d* and {opt['starts'] - 8} seeded random designs; every feasible end is one of "
-                        f"these {len(opt['minima'])} designs (status: how many starts end there; mirror images x_A <-> "
-                        "-x_B counted together); a multistart, not a global proof. f*, h* are our triangle scheme "
-                        "(chord 0.1) at that d.",
-                        "'exact local min': where SLSQP on the exact problem ends from the row's d* (rpr2_suite."
-                        "exact_polish); 'box drop': how far the exact objective still falls within +-0.05 (each "
-                        "component) of the feasible design nearest to d* - about 0 if d* is at a local minimum of "
-                        "the exact problem, > 0 if the exact landscape still descends there.",
-                        _e_reading(opt["minima"], pols),
-                        "Dynamic-Q stops on (3.10) as printed (at infeasible iterates too, as the thesis's h* > 0 show). "
-                        + _e_dq_summary(runs, thesis),
-                        "'compromise P[i]': Dynamic-Q subproblems with no point meeting their approximate constraints "
-                        "within the move limit, where LFOPC returns its least-infeasible compromise and the step reduces "
-                        "the model of h, not f (solvers.dynamic_q, n_compromise_subproblems).",
-                        "Ipopt steps to a design with an empty workspace (h = dW_p = area(W_p) = 4.966, constant there) "
-                        "and reports a locally infeasible problem.",
-                        "How far Dynamic-Q's ends move when a start moves by 1e-6 (O and E): Table 4.7s, suite "
-                        "rpr2-spread (python -m harness run --suite rpr2-spread)."])
+    return Table(
+        name="table_4_7",
+        title="Table 4.7: E synthesis (chord 0.1): min dW_c s.t. dW_p = 0",
+        frame=frame,
+        flags=fl,
+        notes=[
+            "f* = dW_c and h* = dW_p by the triangle scheme; 'exact' columns from exact geometry.",
+            f"Flagged: Dynamic-Q f* not within {E_REL:.0%} of the thesis or exact dW_p > 0.01.",
+            "'(exact-model optimum)', '(exact-model local min)': (4.14) solved in exact, smooth form "
+            "(rpr2_suite.exact_optimum): min area(W_c) - area(W_p), area(W_c) in closed form "
+            "(RPR2.exact_area: lens areas by inclusion-exclusion, halved), subject to every leg length "
+            "on 512 points of W_p's boundary within [l_min, 1.5 l_min] and W_p above the base line - "
+            "exactly W_p inside W_c, so h = 0. SciPy SLSQP with analytic derivatives from SP1-SP4, the "
+            f"thesis's four d* and {opt['starts'] - 8} seeded random designs; every feasible end is one of "
+            f"these {len(opt['minima'])} designs (status: how many starts end there; mirror images x_A <-> "
+            "-x_B counted together); a multistart, not a global proof. f*, h* are our triangle scheme "
+            "(chord 0.1) at that d.",
+            "'exact local min': where SLSQP on the exact problem ends from the row's d* (rpr2_suite."
+            "exact_polish); 'box drop': how far the exact objective still falls within +-0.05 (each "
+            "component) of the feasible design nearest to d* - about 0 if d* is at a local minimum of "
+            "the exact problem, > 0 if the exact landscape still descends there.",
+            _e_reading(opt["minima"], pols),
+            "Dynamic-Q stops on (3.10) as printed (at infeasible iterates too, as the thesis's h* > 0 show). "
+            + _e_dq_summary(runs, thesis),
+            "'compromise P[i]': Dynamic-Q subproblems with no point meeting their approximate constraints "
+            "within the move limit, where LFOPC returns its least-infeasible compromise and the step reduces "
+            "the model of h, not f (solvers.dynamic_q, n_compromise_subproblems).",
+            "Ipopt steps to a design with an empty workspace "
+            f"(h = dW_p = area(W_p) = {_area_wp():.3f}, constant there) "
+            "and reports a locally infeasible problem.",
+            "How far Dynamic-Q's ends move when a start moves by 1e-6 (O and E): Table 4.7s, suite "
+            "rpr2-spread (python -m harness run --suite rpr2-spread).",
+        ],
+    )
 
 
 def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
-    rows, flags = [], []
+    rows: list[dict[str, Any]] = []
+    flags: list[bool] = []
     for _, t in thesis.iterrows():
         P = t["workspace"]
         d = [float(t[c]) for c in ("x_A", "y_A", "x_B")]
@@ -300,11 +357,23 @@ def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
             applicable = r["status"] != "not_applicable"
             ev = _evaluate("p", r["x"], P) if applicable and len(r["x"]) == 3 else {}
             fstar = -float(r["f"]) if r["f"] is not None and np.isfinite(r["f"]) else float("nan")
-            rows.append({"P": P, "source": "ours", "solver": r["solver"], "N^g": count_cell(r["ng"]), "N^fg": count_cell(r["nfg"]),
-                         "f(d0)": _num(f0, ".3f"), "f*": _num(fstar, ".4f"), "g*": _num(ev.get("g"), ".2g"),
-                         "f exact": _num(ev.get("kinv_exact"), ".4f"), "dW_p exact": _num(ev.get("dwp_exact"), ".2g"),
-                         "enclosed": ev.get("enclosed", ""), "d*": _fmt_d(r["x"]) if applicable else "",
-                         "status": _status(r)})
+            rows.append(
+                {
+                    "P": P,
+                    "source": "ours",
+                    "solver": r["solver"],
+                    "N^g": count_cell(r["ng"]),
+                    "N^fg": count_cell(r["nfg"]),
+                    "f(d0)": _num(f0, ".3f"),
+                    "f*": _num(fstar, ".4f"),
+                    "g*": _num(ev.get("g"), ".2g"),
+                    "f exact": _num(ev.get("kinv_exact"), ".4f"),
+                    "dW_p exact": _num(ev.get("dwp_exact"), ".2g"),
+                    "enclosed": ev.get("enclosed", ""),
+                    "d*": _fmt_d(r["x"]) if applicable else "",
+                    "status": _status(r),
+                }
+            )
             bad = (r["solver"] == "dynamic-q" and applicable
                    and not (fstar >= float(t["f_star"]) - P_TOL and ev.get("enclosed", False)))
             flags.append(bool(bad))

@@ -15,6 +15,7 @@ orientations of d* (`rpr3_suite.enclosing_window`) missing the ones the synthesi
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import time
@@ -60,12 +61,17 @@ def dextrous_table(chord: float = 0.02, ranges=DEXTROUS_RANGES) -> Table:
                          "n_bif": ws.bifurcations.shape[0],
                          "types": f"{types.count('I')} I, {types.count('II')} II", "area": round(ws.area, 5),
                          "time_s": round(dt, 3), "note": "" if ws.info.get("closed") else "not closed"})
-    return Table("table_5_2", "Table 5.2 (ours; missing from the thesis's text): dextrous workspaces of M1-M3, "
-                 f"chord d = {chord}", pd.DataFrame(rows),
-                 notes=["Algorithm 5.1 with the closed-form orientation constraints (RPR3.dextrous_constraints); "
-                        "n_b counts boundary points including bifurcation points.",
-                        "time_s: wall time per workspace in Python on this machine (thesis: FORTRAN, 1.6 GHz Pentium 4).",
-                        "The ranges plotted in Figs. 5.4-5.6 are not stated in the text; these are our choice."])
+    return Table(
+        "table_5_2",
+        f"Table 5.2 (ours; missing from the thesis's text): dextrous workspaces of M1-M3, chord d = {chord}",
+        pd.DataFrame(rows),
+        notes=[
+            "Algorithm 5.1 with the closed-form orientation constraints (RPR3.dextrous_constraints); "
+            "n_b counts boundary points including bifurcation points.",
+            "time_s: wall time per workspace in Python on this machine (thesis: FORTRAN, 1.6 GHz Pentium 4).",
+            "The ranges plotted in Figs. 5.4-5.6 are not stated in the text; these are our choice.",
+        ],
+    )
 
 
 def _history_ng(history: str) -> int:
@@ -107,6 +113,32 @@ def _window(kind: str, d, pname: str) -> tuple[str, bool]:
     return cell, not w["covers"]
 
 
+def _thesis_intervals(kind: str, pname: str) -> list[tuple[float, float]]:
+    """Orientations (degrees) at which the thesis's published d* encloses W_p (`enclosing_window`)."""
+    from manipulators.synthesis.rpr3_suite import enclosing_window, synthesis_problem
+
+    d = synthesis_problem(kind, pname).meta["thesis"]["d_star"]
+    return [(math.degrees(a), math.degrees(b)) for a, b in enclosing_window(d, pname, kind=kind)["intervals"]]
+
+
+def _thesis_windows_note() -> str:
+    """Why the thesis's numbers are not reproduced, with the windows of its published designs computed."""
+    w = {(k, p): _thesis_intervals(k, p) for k in ("so", "mo", "d") for p in ("P1", "P2", "P3")}
+
+    def cell(iv: list[tuple[float, float]], empty: str = "none") -> str:
+        return " U ".join(f"[{a:.2f}, {b:.2f}]" for a, b in iv) if iv else empty
+
+    widths = [b - a for key in (("mo", "P1"), ("mo", "P2"), ("d", "P1"), ("d", "P2")) for a, b in w[key]]
+    return (
+        "Why thesis numbers are not reproduced: the published MO/D designs enclose P1 and P2 only over windows of "
+        f"about {min(widths):.1f}-{max(widths):.1f} degrees (MO: {cell(w['mo', 'P1'])}, {cell(w['mo', 'P2'])}; "
+        f"D P2: {cell(w['d', 'P2'])}; D P1: {cell(w['d', 'P1'], 'at no orientation')}) "
+        "instead of the 10 degrees [-5, +5] their synthesis requires, and P3 over "
+        f"{cell(w['mo', 'P3'])} (MO) and {cell(w['d', 'P3'])} (D), not reaching -5 (see the '(thesis d*)' rows); "
+        f"SO/P1's d* encloses P1 only over {cell(w['so', 'P1'])}, not at phi = 0."
+    )
+
+
 def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
     """Table 5.3 / 5.4 / 5.5: ours beside the thesis's, with the exact enclosure check."""
     from manipulators.synthesis.rpr3_suite import SETTINGS, evaluate, exact_optimum, synthesis_problem
@@ -124,7 +156,7 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
         best_ok = _best_enclosed(kind, pname, sub)
         # what the exact model allows (independent of the chord formulation); computed once per code version
         opt = memo("rpr3-exact-optimum", ("manipulators.synthesis.rpr3_suite",), (kind, pname, n_starts),
-                   lambda k=kind, p=pname: exact_optimum(k, p, n_starts=n_starts))
+                   functools.partial(exact_optimum, kind, pname, n_starts=n_starts))
         win, miss = _window(kind, opt["d"], pname)
         rows.append({
             "P": pname, "solver": "(exact-model optimum)", "status": "", "N^fg": None, "N^f": None,
@@ -168,19 +200,29 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
             fstar = ev.get("kinv", float("nan"))
             enclosed = bool(ev.get("enclosed", False))
             win, miss = _window(kind, x if ok else None, pname)
-            rows.append({
-                "P": pname, "solver": r["solver"], "status": r["status"], "N^fg": count_cell(r["nfg"]), "N^f": count_cell(r["nf"]),
-                "f(d0)": round(f0, 4), "f*": round(fstar, 4), "g*": float(f"{ev.get('g', float('nan')):.2g}"),
-                "d*": "[" + ", ".join(f"{v:.4g}" for v in x) + "]" if ok else "",
-                "exact dW_p/W_p": float(f"{ev.get('ratio', float('nan')):.2g}"),
-                "enclosed": enclosed,
-                "leg excess": float(f"{ev.get('max_leg_violation', float('nan')):.2g}"),
-                "phi window (deg)": win,
-                "f* (thesis)": th.get("f_star"), "f(d0) (thesis)": th.get("f_d0"), "N^g (thesis)": th.get("ng"),
-                "g* (thesis)": th.get("g_star"),
-                "d* (thesis)": "[" + ", ".join(f"{v:.4g}" for v in th["d_star"]) + "]" if "d_star" in th else "",
-                "time_s": round(float(r["wall_time_s"]), 1),
-            })
+            rows.append(
+                {
+                    "P": pname,
+                    "solver": r["solver"],
+                    "status": r["status"],
+                    "N^fg": count_cell(r["nfg"]),
+                    "N^f": count_cell(r["nf"]),
+                    "f(d0)": round(f0, 4),
+                    "f*": round(fstar, 4),
+                    "g*": float(f"{ev.get('g', float('nan')):.2g}"),
+                    "d*": "[" + ", ".join(f"{v:.4g}" for v in x) + "]" if ok else "",
+                    "exact dW_p/W_p": float(f"{ev.get('ratio', float('nan')):.2g}"),
+                    "enclosed": enclosed,
+                    "leg excess": float(f"{ev.get('max_leg_violation', float('nan')):.2g}"),
+                    "phi window (deg)": win,
+                    "f* (thesis)": th.get("f_star"),
+                    "f(d0) (thesis)": th.get("f_d0"),
+                    "N^g (thesis)": th.get("ng"),
+                    "g* (thesis)": th.get("g_star"),
+                    "d* (thesis)": "[" + ", ".join(f"{v:.4g}" for v in th["d_star"]) + "]" if "d_star" in th else "",
+                    "time_s": round(float(r["wall_time_s"]), 1),
+                }
+            )
             low = th.get("f_star") is not None and not (fstar >= th["f_star"] - F_TOL)
             flags.append({k: False for k in rows[-1]} | {"f*": bool(low), "enclosed": not enclosed,
                                                           "phi window (deg)": bool(miss and ok)})
@@ -212,11 +254,7 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
         "leg-length excess over W_p's boundary, reached at phi = p.  Flagged when the required orientations are "
         "not in the set even with the leg limits widened by 1e-3 (designs on the constraint miss the exact set by "
         "~1e-4; the 'enclosed' column's area tolerance is a different measure, so the two can differ by a hair).",
-        "Why thesis numbers are not reproduced: the published MO/D designs enclose P1 and P2 only over windows of "
-        "about 1.2-1.4 degrees (MO: [0.67, 2.10], [1.08, 2.26]; D P2: [1.12, 2.32]; D P1: at no orientation) "
-        "instead of the 10 degrees [-5, +5] their synthesis requires, and P3 over [-2.57, 12.01] (MO) and "
-        "[-4.87, 10.18] (D), not reaching -5 (see the '(thesis d*)' rows); SO/P1's d* encloses P1 only over "
-        "[2.25, 3.72], not at phi = 0.  So our feasible set is smaller than the one the thesis's optima imply and our "
+        _thesis_windows_note() + "  So our feasible set is smaller than the one the thesis's optima imply and our "
         "optima are those of the harder problem (docs/rpr3.md).  MO/D f(d0): the thesis evaluated "
         "kappa^-1 only at the polar angles of its computed boundary points of an infeasible start design; our "
         "exact minimum over the prescribed boundary is lower (ERRATA.md).",

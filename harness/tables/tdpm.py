@@ -69,7 +69,7 @@ def _our_rows(runs: pd.DataFrame, n: int, load: str):
             d0 = SUITE.case(r.case_id).problem.x0
             a0 = round(dextrous_area(d0, load), 4)
         except KeyError:
-            d0, a0 = [], np.nan
+            d0, a0 = np.zeros(0), np.nan
         ok = x.size == n and np.all(np.isfinite(x))
         rows.append({"solver": r.solver, "run": r.start, "N^g": count_cell(r.ng), "N^fg": count_cell(r.nfg),
                      "d0": _vec(d0), "A_d0": a0, "d*": _vec(x) if ok else "",

@@ -28,7 +28,6 @@ import itertools
 
 import numpy as np
 
-
 __all__ = ["METHODS", "min_norm", "interval_4", "vertices", "distribute", "SINGULAR_TOL"]
 
 #: Methods: minimum-norm (6.14), constrained l2 (6.17) and l1 (6.19) minima, and the

@@ -95,10 +95,10 @@ def structure_matrix(ell: np.ndarray, a: np.ndarray, lengths: np.ndarray | None 
 
     S = J^T with J the Jacobian of (6.7). A zero-length cable gives a NaN column.
     """
-    l = cable_lengths(ell) if lengths is None else lengths
+    length = cable_lengths(ell) if lengths is None else lengths
     mz = a[..., 0] * ell[..., 1] - a[..., 1] * ell[..., 0]
     with np.errstate(invalid="ignore", divide="ignore"):
-        inv = 1.0 / l
+        inv = 1.0 / length
         return np.stack([ell[..., 0] * inv, ell[..., 1] * inv, mz * inv], axis=1)
 
 

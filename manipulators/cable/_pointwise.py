@@ -52,8 +52,8 @@ def lfopc_l2(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, feas_tol:
     n = S.shape[1]
     s = t_max
     lo, hi = t_min / s, t_max / s
-    I = np.eye(n)
-    jac_g = np.vstack([-I, I])
+    eye = np.eye(n)
+    jac_g = np.vstack([-eye, eye])
     # equilibrium rows whitened, E = (S S^T)^{-1/2} S (orthonormal rows, same solution set):
     # near-singular poses otherwise get a soft penalty mu sigma^2 along S's weak direction
     lam, V = np.linalg.eigh(S @ S.T)

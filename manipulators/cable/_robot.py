@@ -54,7 +54,7 @@ class CableRobot:
     det_min: float | None = None
 
     def __post_init__(self) -> None:
-        set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731  (frozen dataclass)
+        set_ = lambda k, v: object.__setattr__(self, k, v)  # the dataclass is frozen
         c = _points("frame_points", self.frame_points)
         a = _points("platform_points", self.platform_points)
         if c.shape != a.shape:

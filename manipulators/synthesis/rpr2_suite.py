@@ -34,8 +34,7 @@ import numpy as np
 
 from problems import Case, Problem, Suite
 
-from ..objectives import (delta_areas, delta_areas_exact, enclosure_constraint, min_inverse_condition,
-                          polar_angles)
+from ..objectives import delta_areas, delta_areas_exact, enclosure_constraint, min_inverse_condition, polar_angles
 from ..prescribed import P1, PRESCRIBED, Prescribed
 from ..rpr2 import RPR2, inverse_condition
 from ..workspace import Workspace
@@ -56,7 +55,7 @@ P_LIMITS = ((4.0, 4.0), (7.0, 7.0))  # l_i^min = 4, l_i^max = 7 (Section 4.7.3)
 LMAX_RATIO = 1.5  # l_i^max = 1.5 l_i^min (Section 4.5.2)
 
 # Settings stated in the text (problems/reference/thesis_tables/run_settings.csv):
-SETTINGS = {
+SETTINGS: dict[str, dict[str, Any]] = {
     "o": dict(chord=0.5, fd="forward", fd_step=1e-5, eps_f=1e-6, eps_x=1e-4, eps_g=1e-3, rho=0.2),  # 4.5.2
     # 4.6.2: chord 0.1, Gamma 1e-3, eps_f 1e-6, eps_x 1e-4; difference scheme and rho not
     # stated -> forward (as in 4.5.2) and rho = 0.2 (as in 4.5.2 and 4.7.3) [OWN]
@@ -287,7 +286,7 @@ def exact_polish(d0, prescribed: Prescribed | str = "P1", k: int = EXACT_K, box:
 
     f, cons = exact_e_problem(prescribed, k)
     d0 = np.asarray(d0, dtype=float)
-    viol = lambda d: float(max(0.0, -cons(d)[0].min()))  # noqa: E731
+    viol = lambda d: float(max(0.0, -cons(d)[0].min()))
     proj = minimize(lambda d: float((d - d0) @ (d - d0)), d0, jac=lambda d: 2 * (d - d0), method="SLSQP",
                     constraints=[{"type": "ineq", "fun": lambda d: cons(d)[0], "jac": lambda d: cons(d)[1]}],
                     options={"maxiter": 200, "ftol": 1e-14}).x

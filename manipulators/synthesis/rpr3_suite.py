@@ -91,20 +91,20 @@ class _Evaluator:
 
     # one workspace per slice (SO, MO) or the dextrous workspace (D)
     def _workspaces(self, m: RPR3) -> list[Workspace]:
-        O = np.asarray(self.P.centre)
+        centre = np.asarray(self.P.centre)
         phis = self.s["phis"]
         out = []
         if self.s["dextrous"]:
             a, b = min(phis), max(phis)
-            inside = float(np.max(m.dextrous_constraints(O[None, :], a, b))) < 0
-            ws = m.dextrous_workspace(a, b, self.chord, **({"interior": O} if inside else {}))
+            inside = float(np.max(m.dextrous_constraints(centre[None, :], a, b))) < 0
+            ws = m.dextrous_workspace(a, b, self.chord, **({"interior": centre} if inside else {}))
             ws.info["centre_inside"] = inside
             out.append(ws)
         else:
             for phi in phis:
-                inside = float(np.max(m.constraints(O[None, :], phi))) < 0
+                inside = float(np.max(m.constraints(centre[None, :], phi))) < 0
                 try:
-                    ws = m.workspace(phi, self.chord, **({"interior": O} if inside else {}))
+                    ws = m.workspace(phi, self.chord, **({"interior": centre} if inside else {}))
                     ws.info["centre_inside"] = inside
                     out.append(ws)
                 except Exception as exc:  # noqa: BLE001  (this slice is empty)
@@ -273,7 +273,9 @@ def exact_enclosure(kind: str, d, prescribed: str = "P1", n_slices: int = 201,
     return {"dwp_exact": worst, "ratio": ratio, "max_leg_violation": viol, "enclosed": bool(ratio <= tol)}
 
 
-def enclosing_window(d, prescribed: str = "P1", k: int = 4096, kind: str | None = None, tol: float = WINDOW_TOL) -> dict[str, Any]:
+def enclosing_window(
+    d, prescribed: str = "P1", k: int = 4096, kind: str | None = None, tol: float = WINDOW_TOL
+) -> dict[str, Any]:
     """The exact set of orientations phi at which W_p is enclosed in W^C[phi] for design d.
 
     `RPR3.enclosing_orientations` on ``k`` points of W_p's boundary (eqs. 5.7, 5.14, 5.26;
@@ -320,7 +322,9 @@ def _annuli(m: RPR3, phi: float, shapely, quad: int = 512):
     region = shapely.box(-50, m.yC, 50, 50)
     for i in range(3):
         c = shapely.Point(m.base[i] - sign[i] * m.r * e)
-        region = region.intersection(c.buffer(m.lmax[i], quad_segs=quad).difference(c.buffer(m.lmin[i], quad_segs=quad)))
+        region = region.intersection(
+            c.buffer(m.lmax[i], quad_segs=quad).difference(c.buffer(m.lmin[i], quad_segs=quad))
+        )
     return region
 
 

@@ -38,7 +38,7 @@ from ..cable import BETA_MIN, design_robot, loads
 __all__ = ["SUITE", "SETTINGS", "separations", "dextrous_area", "tdpm_problem", "random_starts",
            "published"]
 
-SETTINGS = {
+SETTINGS: dict[int, dict[str, Any]] = {
     3: dict(phi=(-0.1, 0.1), resolution=100, slices=3, fd_step=0.05),
     4: dict(phi=(-0.2, 0.2), resolution=50, slices=21, fd_step=0.1),
 }
@@ -64,7 +64,7 @@ def dextrous_area(d: np.ndarray, load: str) -> float:
         raise ValueError(f"design angles must be finite, got {d}")
     s = SETTINGS[d.size]
     robot = design_robot(d)
-    return robot.dextrous_workspace(*s["phi"], loads()[load], resolution=s["resolution"],
+    return robot.dextrous_workspace(s["phi"][0], s["phi"][1], loads()[load], resolution=s["resolution"],
                                     slices=s["slices"], tensions="l1").area
 
 
@@ -76,7 +76,10 @@ def published() -> dict[tuple[int, str], list[dict[str, Any]]]:
     out: dict[tuple[int, str], list[dict[str, Any]]] = {}
     for r in thesis_table("table_6_5_to_6_10_tdpm_synthesis").itertuples():
         n = int(r.cables)
-        vec = lambda p: [float(getattr(r, f"{p}_beta{i}")) for i in range(1, n + 1)]  # noqa: E731
+
+        def vec(p: str, r: Any = r, n: int = n) -> list[float]:
+            return [float(getattr(r, f"{p}_beta{i}")) for i in range(1, n + 1)]
+
         out.setdefault((n, r.load), []).append(dict(
             table=r.table, run=int(r.run), ng=int(r.ng), d0=vec("d0"), A_d0=float(r.A_d0),
             dstar=vec("dstar"), A_dstar=float(r.A_dstar)))

@@ -57,12 +57,20 @@ class Workspace:
     info: Mapping[str, Any] = dataclasses.field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731  (frozen)
-        b = np.zeros((0, 2)) if self.boundary is None or np.size(self.boundary) == 0 else as_points(self.boundary, "boundary")
+        set_ = lambda k, v: object.__setattr__(self, k, v)  # the dataclass is frozen
+        b = (
+            np.zeros((0, 2))
+            if self.boundary is None or np.size(self.boundary) == 0
+            else as_points(self.boundary, "boundary")
+        )
         set_("boundary", b)
         bif = self.bifurcations
         set_("bifurcations", np.zeros((0, 2)) if bif is None or np.size(bif) == 0 else as_points(bif, "bifurcations"))
-        act = np.full(b.shape[0], -1, dtype=int) if self.active is None else np.asarray(self.active, dtype=int).reshape(-1)
+        act = (
+            np.full(b.shape[0], -1, dtype=int)
+            if self.active is None
+            else np.asarray(self.active, dtype=int).reshape(-1)
+        )
         if act.shape[0] != b.shape[0]:
             raise ValueError(f"Workspace.active has length {act.shape[0]}, boundary has {b.shape[0]} points")
         set_("active", act)
@@ -72,7 +80,9 @@ class Workspace:
             gx, gy = (np.asarray(g, dtype=float).reshape(-1) for g in self.grid)
             mask = np.asarray(self.mask, dtype=bool)
             if mask.shape != (gy.size, gx.size):
-                raise ValueError(f"Workspace.mask must have shape (len(y), len(x)) = {(gy.size, gx.size)}, got {mask.shape}")
+                raise ValueError(
+                    f"Workspace.mask must have shape (len(y), len(x)) = {(gy.size, gx.size)}, got {mask.shape}"
+                )
             set_("grid", (gx, gy))
             set_("mask", mask)
         if self.area is None:
@@ -112,7 +122,9 @@ class Workspace:
             # outside the grid's span: not in the workspace
             hx = (gx[-1] - gx[0]) / max(gx.size - 1, 1) / 2
             hy = (gy[-1] - gy[0]) / max(gy.size - 1, 1) / 2
-            outside = (p[:, 0] < gx[0] - hx) | (p[:, 0] > gx[-1] + hx) | (p[:, 1] < gy[0] - hy) | (p[:, 1] > gy[-1] + hy)
+            outside = (
+                (p[:, 0] < gx[0] - hx) | (p[:, 0] > gx[-1] + hx) | (p[:, 1] < gy[0] - hy) | (p[:, 1] > gy[-1] + hy)
+            )
             return out & ~outside
         return np.zeros(p.shape[0], dtype=bool)
 

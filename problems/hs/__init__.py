@@ -61,7 +61,7 @@ def _thesis_rows() -> dict[str, dict[str, dict[str, Any]]]:
         if not row["problem"].isdigit():
             continue  # "Svan": not reproduced (see module docstring)
         pid = f"hs{int(row['problem']):03d}"
-        num = lambda s: float(s) if s not in ("", None) else None  # noqa: E731
+        num = lambda s: float(s) if s not in ("", None) else None
         out.setdefault(pid, {})[row["method"]] = {
             "f_act": num(row["f_act"]), "nfg": num(row["nfg"]), "f_star": num(row["f_star"]),
             "er": num(row["er"]), "er_is_upper_bound": row["er_is_upper_bound"] == "true",

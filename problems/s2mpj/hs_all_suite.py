@@ -46,7 +46,7 @@ def hs_reference(instance: str) -> tuple[float | None, object]:
     return p.f_ref, p.x_ref
 
 
-def INSTANCES() -> list[str]:  # noqa: N802 - a constant computed on first use
+def INSTANCES() -> list[str]:
     return list(select(SELECTION)["instance"])
 
 

@@ -12,14 +12,62 @@ def _runs():
             "wall_time_s": 0.1, "message": "", "nit": 1, "nf": 1, "ng": 1}
     rows = [
         # known optimum 1.0
-        {"case_id": "A/n=2/x0", "solver": "s1", "f": 1.0 + 1e-9, "f_ref": 1.0, "max_violation": 0.0, "status": "converged", "nfg": 10},
-        {"case_id": "A/n=2/x0", "solver": "s2", "f": 0.5, "f_ref": 1.0, "max_violation": 1e-3, "status": "converged", "nfg": 5},
+        {
+            "case_id": "A/n=2/x0",
+            "solver": "s1",
+            "f": 1.0 + 1e-9,
+            "f_ref": 1.0,
+            "max_violation": 0.0,
+            "status": "converged",
+            "nfg": 10,
+        },
+        {
+            "case_id": "A/n=2/x0",
+            "solver": "s2",
+            "f": 0.5,
+            "f_ref": 1.0,
+            "max_violation": 1e-3,
+            "status": "converged",
+            "nfg": 5,
+        },
         # no known optimum: the best feasible f found (2.0) is the reference; s2's lower f is infeasible
-        {"case_id": "B/n=2/x0", "solver": "s1", "f": 2.0, "f_ref": np.nan, "max_violation": 0.0, "status": "converged", "nfg": 7},
-        {"case_id": "B/n=2/x0", "solver": "s2", "f": 1.0, "f_ref": np.nan, "max_violation": 0.5, "status": "converged", "nfg": 3},
-        {"case_id": "C/n=2/x0", "solver": "s1", "f": np.nan, "f_ref": np.nan, "max_violation": np.nan, "status": "timeout",
-         "nfg": pd.NA, "message": "wall-clock limit of 10 s exceeded"},
-        {"case_id": "C/n=2/x0", "solver": "s2", "f": 3.0, "f_ref": np.nan, "max_violation": 0.0, "status": "max_iter", "nfg": 9},
+        {
+            "case_id": "B/n=2/x0",
+            "solver": "s1",
+            "f": 2.0,
+            "f_ref": np.nan,
+            "max_violation": 0.0,
+            "status": "converged",
+            "nfg": 7,
+        },
+        {
+            "case_id": "B/n=2/x0",
+            "solver": "s2",
+            "f": 1.0,
+            "f_ref": np.nan,
+            "max_violation": 0.5,
+            "status": "converged",
+            "nfg": 3,
+        },
+        {
+            "case_id": "C/n=2/x0",
+            "solver": "s1",
+            "f": np.nan,
+            "f_ref": np.nan,
+            "max_violation": np.nan,
+            "status": "timeout",
+            "nfg": pd.NA,
+            "message": "wall-clock limit of 10 s exceeded",
+        },
+        {
+            "case_id": "C/n=2/x0",
+            "solver": "s2",
+            "f": 3.0,
+            "f_ref": np.nan,
+            "max_violation": 0.0,
+            "status": "max_iter",
+            "nfg": 9,
+        },
     ]
     df = pd.DataFrame([{**base, **r} for r in rows])
     df["nfg"] = df["nfg"].astype("Int64")

@@ -34,13 +34,13 @@ def test_performance_profile_by_hand():
         {"case_id": "p2", "solver": "b", "nfg": 10, "success": False},  # unsolved: infinite ratio
     ])
     grid, rho = performance_profile(runs, "nfg")
-    at = lambda tau: rho.iloc[np.searchsorted(grid, tau, side="right") - 1]  # noqa: E731
+    at = lambda tau: rho.iloc[np.searchsorted(grid, tau, side="right") - 1]
     assert at(0.0)["a"] == 1.0 and at(0.0)["b"] == 0.0
     assert at(1.0)["b"] == 0.5 and at(grid[-1])["b"] == 0.5
 
 
 def test_data_profile_by_hand():
-    h = lambda pts: json.dumps([[i + 1, f, 0.0] for i, f in enumerate(pts)])  # noqa: E731
+    h = lambda pts: json.dumps([[i + 1, f, 0.0] for i, f in enumerate(pts)])
     runs = _runs([
         {"case_id": "p1", "solver": "a", "nfg": 3, "success": True, "history": h([10.0, 1.0, 0.0])},
         {"case_id": "p1", "solver": "b", "nfg": 6, "success": True, "history": h([10.0, 9, 8, 7, 6, 0.5])},

@@ -101,7 +101,9 @@ def test_cli_run_table_list(tiny_file, tmp_path, capsys):
 
 
 def test_table_without_plugin_or_results(tmp_path, capsys):
-    assert main(["table", "--suite", "appendix-a", "--out", str(tmp_path)]) == 2  # nothing stored where asked: bad input
+    assert (
+        main(["table", "--suite", "appendix-a", "--out", str(tmp_path)]) == 2
+    )  # nothing stored where asked: bad input
     assert "no results" in capsys.readouterr().err
 
 
@@ -127,7 +129,7 @@ def test_progress_bar_and_plain_lines():
 def test_code_version_follows_the_import_closure(tmp_path):
     from harness._codeversion import code_version, module_closure
 
-    names = lambda mods: {str(p.relative_to(p.parents[1])) for p in module_closure(mods)}  # noqa: E731
+    names = lambda mods: {str(p.relative_to(p.parents[1])) for p in module_closure(mods)}
     sqsd = names(("solvers.sqsd", "problems._suite"))
     assert "solvers/sqsd.py" in sqsd and "problems/_oracle.py" in sqsd
     assert not any(n.startswith("manipulators") or "lfopc" in n for n in sqsd)
@@ -163,7 +165,7 @@ def test_crash_between_parquet_replace_and_unlink_leaves_no_duplicates(tiny_file
     run(tiny_file, tmp_path, problems=["q2", "q20"])
     store = Store(tmp_path, "tiny")
     rows = store.load()
-    plain = lambda v: None if v is pd.NA else (list(map(float, v)) if hasattr(v, "tolist") else int(v))  # noqa: E731
+    plain = lambda v: None if v is pd.NA else (list(map(float, v)) if hasattr(v, "tolist") else int(v))
     for r in rows.to_dict("records"):  # re-create the per-run files as if never deleted
         store.write_run(json.loads(json.dumps(r, default=plain)))
     assert len(store.load()) == len(rows) == 2

@@ -3,6 +3,7 @@ every command names the file and the repair command, and a broken suite does not
 the report of the others."""
 
 import pathlib
+import subprocess
 
 import pytest
 
@@ -55,3 +56,17 @@ def test_report_embed_is_self_contained(tmp_path, capsys):
     assert "report: [1/1] tiny" in capsys.readouterr().err  # progress lines
     page = (tmp_path / "report" / "index.html").read_text()
     assert 'src="data:image/png;base64,' in page and '.png"' not in page
+
+
+def test_repair_without_previous_generation_says_so(tmp_path):
+    """A fresh clone has no runs.prev.parquet: repair must not claim a restore, and names git's copy."""
+    _run(tmp_path, ["q2"])  # one merge only: no previous generation
+    store = Store(tmp_path, "tiny")
+    assert not store.previous.exists()
+    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
+    subprocess.run(["git", "-C", str(tmp_path), "add", "tiny/runs.parquet"], check=True)
+    data = store.parquet.read_bytes()
+    store.parquet.write_bytes(data[: len(data) // 2])
+    msg = store.repair()
+    assert "restored" not in msg and "no previous generation" in msg
+    assert f"git checkout -- {store.parquet}" in msg

@@ -37,7 +37,13 @@ def test_three_tables_in_thesis_layout(runs):
     assert {"FR N^it", "FR N^it thesis", "PR E^r/I^inf", "PR E^r/I^inf thesis"} <= set(t22.frame.columns)
     assert t21.flags.shape == t21.frame.shape
     r1 = t21.frame.iloc[0]
-    assert (r1["Prob."], r1["n"], r1["rho"], r1["SQSD N^fg thesis"], r1["SD N^fg thesis"]) == ("1", "3", "1", "12", "41")
+    assert (r1["Prob."], r1["n"], r1["rho"], r1["SQSD N^fg thesis"], r1["SD N^fg thesis"]) == (
+        "1",
+        "3",
+        "1",
+        "12",
+        "41",
+    )
     assert r1["SD N^fg"] == "41" and r1["SD N^it"] == "20"
     assert t21.frame.iloc[3]["SD N^fg"] == "> 20000" and t21.frame.iloc[3]["SD N^fg thesis"] == "> 20000"
     iinf = t21.frame[(t21.frame["Prob."] == "14") & (t21.frame["n"] == "200")].iloc[0]

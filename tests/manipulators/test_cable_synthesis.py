@@ -7,8 +7,7 @@ import pandas as pd
 import pytest
 
 from manipulators.cable import BETA_MIN
-from manipulators.synthesis.tdpm_suite import (SUITE, dextrous_area, published, separations,
-                                               tdpm_problem)
+from manipulators.synthesis.tdpm_suite import SUITE, dextrous_area, published, separations, tdpm_problem
 
 
 def test_separations_wrap_around():

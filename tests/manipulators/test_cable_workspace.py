@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 import shapely
 
-from problems.reference import thesis_table
 from manipulators.cable import CableRobot, design_robot, loads, thesis_robot
+from problems.reference import thesis_table
 
 TOL_PUBLISHED = 0.03  # acceptance: within 3 % of the published A_d*
 

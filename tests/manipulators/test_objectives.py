@@ -1,11 +1,15 @@
 """Objectives: triangle scheme (4.9, Fig. 4.3) vs exact areas, g (4.16), min kappa^-1 (App. D)."""
 
-import numpy as np
 import pytest
 
 from manipulators import RPR2
-from manipulators.objectives import (delta_areas, delta_areas_exact, enclosure_constraint, min_inverse_condition,
-                                     triangle_area)
+from manipulators.objectives import (
+    delta_areas,
+    delta_areas_exact,
+    enclosure_constraint,
+    min_inverse_condition,
+    triangle_area,
+)
 from manipulators.prescribed import P1, P2, P3
 
 START = RPR2(-4.0, -0.1, 4.0, (4.0, 4.0), (7.0, 7.0))

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from problems.reference import thesis_table
 from manipulators.prescribed import P1, P2, P3, P3_ARCS, chapter5_workspaces, get_prescribed
+from problems.reference import thesis_table
 
 
 def test_p1_is_four_arcs_with_corners_at_pm1():

@@ -1,8 +1,8 @@
 """2-RPR kinematics (Section 4.3, Appendix D): Jacobian (4.22) and kappa^-1 (4.23)."""
 
 import numpy as np
-import shapely
 import pytest
+import shapely
 
 from manipulators import RPR2
 from manipulators.rpr2 import inverse_condition
@@ -28,7 +28,7 @@ def test_inverse_condition_is_det_j_and_one_over_kappa():
     kinv = R.inverse_condition(U)
     assert np.allclose(kinv, det, atol=1e-12)
     # kappa = ||J|| ||J^-1|| with ||A|| = sqrt(tr(A W A^T)), W = I/2 (4.19)-(4.20)
-    norm = lambda A: np.sqrt(np.einsum("kij,kij->k", A, A) / 2)  # noqa: E731
+    norm = lambda A: np.sqrt(np.einsum("kij,kij->k", A, A) / 2)
     kappa = norm(J) * norm(np.linalg.inv(J))
     assert np.allclose(kinv, 1 / kappa, rtol=1e-10)
     assert np.all((kinv > 0) & (kinv <= 1 + 1e-12))

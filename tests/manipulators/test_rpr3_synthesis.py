@@ -6,7 +6,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from manipulators.synthesis.rpr3_suite import (SETTINGS, SUITE, evaluate, exact_enclosure, synthesis_problem)
+from manipulators.synthesis.rpr3_suite import SETTINGS, SUITE, evaluate, exact_enclosure, synthesis_problem
 
 
 @pytest.mark.parametrize("pname,expect", [("P1", 0.759), ("P2", 0.768), ("P3", 0.747)])

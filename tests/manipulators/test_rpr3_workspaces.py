@@ -37,8 +37,12 @@ def component_at(region, point):
     raise AssertionError("no exact component contains the interior point")
 
 
-RANDOM = [RPR3(*d) for d in np.random.default_rng(11).uniform([-1.2, -0.2, 0.6, 1.5, 0.5], [-0.8, 0.3, 1.3, 2.1, 1.0], (3, 5))]
-CASES = [(RPR3.named(n), p) for n in ("M1", "M2", "M3") for p in (-5.0, 0.0, 5.0)] + [(m, p) for m in RANDOM for p in (-4.0, 3.0)]
+RANDOM = [
+    RPR3(*d) for d in np.random.default_rng(11).uniform([-1.2, -0.2, 0.6, 1.5, 0.5], [-0.8, 0.3, 1.3, 2.1, 1.0], (3, 5))
+]
+CASES = [(RPR3.named(n), p) for n in ("M1", "M2", "M3") for p in (-5.0, 0.0, 5.0)] + [
+    (m, p) for m in RANDOM for p in (-4.0, 3.0)
+]
 
 
 @pytest.mark.parametrize("m,phi_deg", CASES)

@@ -7,7 +7,11 @@ import pytest
 
 from problems import get_suite
 from problems.appendix_a import (
-    CLASSIC_BUILDERS, EXTENDED_BUILDERS, SOLVERS, build_cases, make_case,
+    CLASSIC_BUILDERS,
+    EXTENDED_BUILDERS,
+    SOLVERS,
+    build_cases,
+    make_case,
 )
 from problems.appendix_a._settings import cap_for, rho_for, thesis_label, tolerances_for
 

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
+import casadi as ca
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import casadi as ca
 from problems import get_suite
 from problems.hs import problem, problem_ids
 from problems.hs._build import compiled, load_data

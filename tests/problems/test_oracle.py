@@ -24,7 +24,9 @@ def test_value_and_gradient_at_one_point_count_once():
 
 def test_returning_to_a_point_is_not_a_new_point():
     o = Oracle(quad())
-    o.f([1.0, 1.0]); o.f([2.0, 2.0]); o.f([1.0, 1.0])
+    o.f([1.0, 1.0])
+    o.f([2.0, 2.0])
+    o.f([1.0, 1.0])
     assert o.nfg == 2
     assert o.nf == 3  # raw executions are all kept
 
@@ -56,14 +58,16 @@ def test_constraint_jacobian_by_finite_differences_counted():
 def test_history_records_f_and_violation():
     p = Problem(name="c", x0=[1.0, 1.0], objective=lambda x: x[0], ineq=lambda x: np.array([x @ x - 1.0]))
     o = Oracle(p)
-    o.f([2.0, 0.0]); o.ineq([2.0, 0.0])
+    o.f([2.0, 0.0])
+    o.ineq([2.0, 0.0])
     h = o.history()
     assert h.shape == (1, 3) and h[0, 1] == 2.0 and h[0, 2] == pytest.approx(3.0)
 
 
 def test_budget():
     o = Oracle(quad(), max_nfg=2)
-    o.f([0.0, 1.0]); o.f([0.0, 2.0])
+    o.f([0.0, 1.0])
+    o.f([0.0, 2.0])
     with pytest.raises(BudgetExhausted):
         o.f([0.0, 3.0])
 

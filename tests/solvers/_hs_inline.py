@@ -42,11 +42,20 @@ def hs071() -> Problem:
         return np.array([x[3] * (2 * x[0] + x[1] + x[2]), x[0] * x[3], x[0] * x[3] + 1, x[0] * s])
 
     return Problem(
-        name="hs071", x0=[1.0, 5.0, 5.0, 1.0], objective=f, gradient=g,
+        name="hs071",
+        x0=[1.0, 5.0, 5.0, 1.0],
+        objective=f,
+        gradient=g,
         ineq=lambda x: np.array([25 - x[0] * x[1] * x[2] * x[3]]),
-        ineq_jacobian=lambda x: -np.array([[x[1] * x[2] * x[3], x[0] * x[2] * x[3], x[0] * x[1] * x[3], x[0] * x[1] * x[2]]]),
-        eq=lambda x: np.array([x @ x - 40]), eq_jacobian=lambda x: 2 * x[None, :],
-        lower=1.0, upper=5.0, f_ref=17.0140172891563)
+        ineq_jacobian=lambda x: (
+            -np.array([[x[1] * x[2] * x[3], x[0] * x[2] * x[3], x[0] * x[1] * x[3], x[0] * x[1] * x[2]]])
+        ),
+        eq=lambda x: np.array([x @ x - 40]),
+        eq_jacobian=lambda x: 2 * x[None, :],
+        lower=1.0,
+        upper=5.0,
+        f_ref=17.0140172891563,
+    )
 
 
 def hs076() -> Problem:

@@ -2,9 +2,9 @@
 
 import pytest
 
-from problems.reference import thesis_table
 from problems import Oracle, Problem
 from problems.appendix_a import make_case
+from problems.reference import thesis_table
 from solvers import get_solver_class, solve
 from solvers.classical import FletcherReeves, MoreThuenteSearch, PolakRibiere, SteepestDescent
 
@@ -24,8 +24,8 @@ def _thesis(method, case):
 
 
 def test_line_search_meets_strong_wolfe_after_at_least_two_trials():
-    f = lambda a: (a - 2.0) ** 4 - a  # noqa: E731
-    df = lambda a: 4 * (a - 2.0) ** 3 - 1  # noqa: E731
+    f = lambda a: (a - 2.0) ** 4 - a
+    df = lambda a: 4 * (a - 2.0) ** 3 - 1
     trials = []
 
     def phi(a):

@@ -7,8 +7,7 @@ import numpy as np
 import pytest
 
 from solvers._result import Status
-from solvers.convex import (LINPROG_STATUS_MAP, LP_BACKENDS, QP_BACKENDS, STATUS_MAPS, map_status,
-                            solve_lp, solve_qp)
+from solvers.convex import LINPROG_STATUS_MAP, LP_BACKENDS, QP_BACKENDS, STATUS_MAPS, map_status, solve_lp, solve_qp
 
 CVXPY_STATUSES = [cp.OPTIMAL, cp.OPTIMAL_INACCURATE, cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE,
                   cp.UNBOUNDED, cp.UNBOUNDED_INACCURATE, cp.SOLVER_ERROR, cp.USER_LIMIT]

@@ -4,14 +4,13 @@ import dataclasses
 
 import numpy as np
 import pytest
+from _hs_inline import ALL, THESIS_NFG, hs010, hs076
 from scipy.optimize import minimize as sp_minimize
 
 from problems import Oracle, Problem
 from solvers import Status, solve
 from solvers.dynamic_q import DynamicQ
 from solvers.lfopc import LFOPC
-
-from _hs_inline import ALL, THESIS_NFG, hs010, hs076
 
 
 @pytest.mark.parametrize("make", ALL, ids=[m.__name__ for m in ALL])

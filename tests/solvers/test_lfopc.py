@@ -6,8 +6,7 @@ from scipy.optimize import minimize as sp_minimize
 
 from problems import Problem
 from solvers import Status, solve
-from solvers.lfopc import PenaltyForm
-from solvers.lfopc import LFOPC
+from solvers.lfopc import LFOPC, PenaltyForm
 
 
 def halfplane_form():

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from problems.reference import thesis_table
 from problems import Problem
 from problems.appendix_a import make_case
+from problems.reference import thesis_table
 from solvers import solve
 from solvers.sqsd import C_MIN, SQSD
 

@@ -1,0 +1,237 @@
+"""The spatial cable robot: structure matrix, tensions and wrench-feasible workspaces.
+
+Conventions (also in docs/spatial.md)
+-------------------------------------
+* Frame points a_i and platform points b_i are (m, 3) arrays in metres; b_i is given in
+  the platform frame, whose origin is the reference point p.
+* ``rotation`` is a 3 x 3 rotation matrix R (platform frame to world) or three angles
+  (alpha, beta, gamma) in radians, read as *extrinsic* rotations about the fixed world
+  axes x, then y, then z: R = R_z(gamma) R_y(beta) R_x(alpha) (SciPy's ``"xyz"``).
+* Cable i pulls the platform along the unit vector u_i = (a_i - p - R b_i) / L_i. Column i
+  of the 6 x m structure matrix is [u_i; (R b_i) x u_i] (force; moment about p), and the
+  tensions t balance the external wrench w = [f; tau] acting on the platform:
+  S t + w = 0 (thesis eq. 6.11 in 6-D).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import numpy as np
+
+from ._distribution6 import distribute6
+
+__all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "ray_boundary", "grid_points", "METHODS"]
+
+#: Tension methods: minimum-norm (6.14), constrained l2 (6.17, a QP), l1 (6.19).
+METHODS = ("l1", "l2", "min-norm")
+
+
+def rotation_matrix(rotation: Any) -> np.ndarray:
+    """A 3 x 3 rotation matrix from a matrix or extrinsic x-y-z angles (radians)."""
+    r = np.asarray(rotation, dtype=float)
+    if r.shape == (3, 3):
+        if not (np.all(np.isfinite(r)) and np.allclose(r.T @ r, np.eye(3), atol=1e-9)
+                and np.linalg.det(r) > 0):
+            raise ValueError("rotation matrix must be finite and orthonormal with det +1")
+        return r
+    if r.shape == (3,):
+        if not np.all(np.isfinite(r)):
+            raise ValueError(f"rotation angles must be finite; got {r.tolist()}")
+        from scipy.spatial.transform import Rotation
+
+        return Rotation.from_euler("xyz", r).as_matrix()
+    raise ValueError(f"rotation must be a 3 x 3 matrix or 3 x-y-z angles; got shape {r.shape}")
+
+
+def _points(name: str, value: Any) -> np.ndarray:
+    a = np.asarray(value, dtype=float)
+    if a.ndim != 2 or a.shape[1] != 3 or not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be a finite (m, 3) array in metres; got shape {a.shape}")
+    return a
+
+
+@dataclasses.dataclass(frozen=True)
+class SpatialWorkspace:
+    """A constant-orientation (or dextrous) workspace sampled on a 3-D grid of cell centres.
+
+    ``mask`` has shape (n, n, n) indexed [ix, iy, iz]; ``points`` (n^3, 3) in the same
+    (C) order; ``volume`` = feasible cells x cell volume.
+    """
+
+    mask: np.ndarray
+    points: np.ndarray
+    box: np.ndarray
+    resolution: int
+
+    @property
+    def cell_volume(self) -> float:
+        return float(np.prod((self.box[1] - self.box[0]) / self.resolution))
+
+    @property
+    def volume(self) -> float:
+        return float(self.mask.sum()) * self.cell_volume
+
+    @property
+    def feasible_points(self) -> np.ndarray:
+        return self.points[self.mask.ravel()]
+
+
+def grid_points(box: Any, resolution: int) -> tuple[np.ndarray, np.ndarray]:
+    """(box (2, 3), cell-centre points (n^3, 3)) of an axis-aligned box [[lo], [hi]]."""
+    b = np.asarray(box, dtype=float)
+    if b.shape != (2, 3) or not np.all(np.isfinite(b)) or np.any(b[1] <= b[0]):
+        raise ValueError(f"box must be [[x0, y0, z0], [x1, y1, z1]] with x1 > x0 etc.; got {b.tolist()}")
+    if int(resolution) < 1:
+        raise ValueError(f"resolution must be a positive integer; got {resolution}")
+    n = int(resolution)
+    axes = [b[0, d] + (np.arange(n) + 0.5) * (b[1, d] - b[0, d]) / n for d in range(3)]
+    X, Y, Z = np.meshgrid(*axes, indexing="ij")
+    return b, np.column_stack([X.ravel(), Y.ravel(), Z.ravel()])
+
+
+def ray_boundary(feasible: Any, centre: Any, directions: Any, reach: float, tol: float = 1e-9) -> np.ndarray:
+    """First feasibility change along rays from a feasible ``centre``, by bisection, all rays at once.
+
+    ``feasible`` maps points (k, 3) to (k,) bool. For each direction d (normalized) returns
+    centre + s d, s found by bisection on [0, reach] to ``tol`` (s = reach where the end of
+    the segment is feasible: the ray is then not cut within ``reach``). Exact for sets
+    that are star-shaped about the centre; otherwise some crossing on the ray.
+    """
+    c = np.asarray(centre, dtype=float)
+    D = np.atleast_2d(np.asarray(directions, dtype=float))
+    if c.shape != (3,) or D.shape[1] != 3 or not (np.all(np.isfinite(c)) and np.all(np.isfinite(D))):
+        raise ValueError("centre must be 3 finite coordinates and directions a finite (k, 3) array")
+    norms = np.linalg.norm(D, axis=1, keepdims=True)
+    if np.any(norms == 0):
+        raise ValueError("directions must be non-zero vectors")
+    D = D / norms
+    if not (np.isfinite(reach) and reach > 0):
+        raise ValueError(f"reach must be a positive length; got {reach}")
+    if not feasible(c[None])[0]:
+        raise ValueError(f"centre {c.tolist()} is not in the workspace")
+    lo, hi = np.zeros(len(D)), np.full(len(D), float(reach))
+    out = ~feasible(c + hi[:, None] * D)
+    lo[~out] = hi[~out]
+    while np.any(out & (hi - lo > tol)):
+        act = np.flatnonzero(out & (hi - lo > tol))
+        mid = 0.5 * (lo[act] + hi[act])
+        f = feasible(c + mid[:, None] * D[act])
+        lo[act[f]] = mid[f]
+        hi[act[~f]] = mid[~f]
+    return c + lo[:, None] * D
+
+
+@dataclasses.dataclass
+class SpatialCableRobot:
+    """A 6-dof cable robot with m >= 7 cables and tension limits t_min <= t_i <= t_max (N)."""
+
+    frame_points: Any
+    platform_points: Any
+    t_min: float = 1.0
+    t_max: float = 100.0
+
+    def __post_init__(self) -> None:
+        self.frame_points = _points("frame_points", self.frame_points)
+        self.platform_points = _points("platform_points", self.platform_points)
+        m = self.frame_points.shape[0]
+        if self.platform_points.shape[0] != m:
+            raise ValueError(f"frame_points has {m} rows but platform_points has {self.platform_points.shape[0]}")
+        if m < 7:
+            raise ValueError(f"a redundant spatial cable robot needs m >= 7 cables; got {m}")
+        if not (np.isfinite(self.t_min) and np.isfinite(self.t_max) and 0 <= self.t_min < self.t_max):
+            raise ValueError(f"need finite 0 <= t_min < t_max; got t_min={self.t_min}, t_max={self.t_max}")
+
+    @property
+    def m(self) -> int:
+        return int(self.frame_points.shape[0])
+
+    def structure_matrices(self, positions: Any, rotation: Any) -> np.ndarray:
+        """Structure matrices (k, 6, m) at k positions (k, 3) for one orientation."""
+        p = np.atleast_2d(np.asarray(positions, dtype=float))
+        R = rotation_matrix(rotation)
+        rb = self.platform_points @ R.T  # (m, 3) world-frame platform vectors R b_i
+        d = self.frame_points[None] - p[:, None, :] - rb[None]  # (k, m, 3)
+        u = d / np.linalg.norm(d, axis=2, keepdims=True)
+        mom = np.cross(rb[None], u)
+        return np.concatenate([np.swapaxes(u, 1, 2), np.swapaxes(mom, 1, 2)], axis=1)
+
+    def structure_matrix(self, position: Any, rotation: Any) -> np.ndarray:
+        """The 6 x m wrench (structure) matrix at one pose; see the module's conventions."""
+        p = np.asarray(position, dtype=float)
+        if p.shape != (3,):
+            raise ValueError(f"position must be 3 coordinates; got shape {p.shape}")
+        return self.structure_matrices(p[None], rotation)[0]
+
+    @staticmethod
+    def _wrench(wrench: Any) -> np.ndarray:
+        w = np.asarray(wrench, dtype=float)
+        if w.shape != (6,) or not np.all(np.isfinite(w)):
+            raise ValueError(f"wrench must be 6 finite numbers [fx, fy, fz, mx, my, mz]; got shape {w.shape}")
+        return w
+
+    def tensions(self, position: Any, rotation: Any, wrench: Any, method: str = "l1",
+                 backend: str = "vector") -> np.ndarray | None:
+        """Tensions (m,) balancing ``wrench`` within the limits, or None if none exist.
+
+        method: "l1" (6.19), "l2" (6.17) or "min-norm" (6.14). backend "vector" uses the
+        exact basic-solution enumeration (l1, min-norm); an LP/QP backend of
+        `solvers.convex` ("highs", "clarabel", "osqp", "linprog") solves the convex program.
+        "l2" always goes to a QP backend ("clarabel" when backend is "vector").
+        """
+        if method not in METHODS:
+            raise ValueError(f"unknown tension method {method!r}; valid: {', '.join(METHODS)}")
+        S = self.structure_matrix(position, rotation)
+        w = self._wrench(wrench)
+        if method == "l2" and backend == "vector":
+            backend = "clarabel"
+        if backend == "vector" or method == "min-norm":
+            feas, T = distribute6(S[None], w[None], self.t_min, self.t_max, method)
+            return T[0] if feas[0] else None
+        from solvers.convex import solve_lp, solve_qp
+
+        lb, ub = np.full(self.m, self.t_min), np.full(self.m, self.t_max)
+        if method == "l1":
+            res = solve_lp(np.ones(self.m), S, -w, lb, ub, backend=backend)
+        else:
+            res = solve_qp(S, -w, lb, ub, backend=backend)
+        return None if res.x is None or res.feasible is not True else np.clip(res.x, self.t_min, self.t_max)
+
+    def feasible(self, positions: Any, rotation: Any, wrench: Any) -> np.ndarray:
+        """Wrench feasibility (k,) bool at k positions for one orientation, exactly."""
+        S = self.structure_matrices(positions, rotation)
+        return distribute6(S, self._wrench(wrench), self.t_min, self.t_max, "l1", need_tensions=False)[0]
+
+    def workspace(self, rotation: Any, wrench: Any, box: Any, resolution: int = 30) -> SpatialWorkspace:
+        """The constant-orientation wrench-feasible workspace on a resolution^3 grid."""
+        b, pts = grid_points(box, resolution)
+        mask = self.feasible(pts, rotation, wrench).reshape((int(resolution),) * 3)
+        return SpatialWorkspace(mask, pts, b, int(resolution))
+
+    def dextrous_workspace(self, rotations: Any, wrench: Any, box: Any, resolution: int = 30) -> SpatialWorkspace:
+        """Positions feasible at every orientation in ``rotations`` (the spatial form of
+        the thesis's dextrous workspace, Algorithm 5.1): intersection of the masks."""
+        rots = list(rotations)
+        if not rots:
+            raise ValueError("rotations must hold at least one orientation")
+        b, pts = grid_points(box, resolution)
+        ok = np.ones(len(pts), dtype=bool)
+        for R in rots:  # only the still-feasible points are re-tested
+            idx = np.flatnonzero(ok)
+            ok[idx] = self.feasible(pts[idx], R, wrench)
+        return SpatialWorkspace(ok.reshape((int(resolution),) * 3), pts, b, int(resolution))
+
+    def boundary_points(self, rotation: Any, wrench: Any, centre: Any, directions: Any,
+                        reach: float, tol: float = 1e-9) -> np.ndarray:
+        """Boundary points by bisection along rays from a feasible ``centre`` (the spatial
+        counterpart of the thesis's chord method), all rays at once.
+
+        For each unit direction d (k, 3) returns centre + s d with s the first feasibility
+        change found by bisection on [0, reach] to ``tol`` (s = reach where the whole ray
+        segment is feasible). Assumes the feasible set is star-shaped about the centre.
+        """
+        return ray_boundary(lambda P: self.feasible(P, rotation, wrench), centre, directions, reach, tol)
+
+    def __repr__(self) -> str:
+        return f"SpatialCableRobot(m={self.m}, t_min={self.t_min}, t_max={self.t_max})"
