@@ -6,8 +6,9 @@ At the iterate x the subproblem in the step d is
     s.t. g_j + grad g_j^T d <= s_j,   h_k + grad h_k^T d = t+_k - t-_k,   s, t+, t- >= 0
          max(lower - x, -rho) <= d <= min(upper - x, rho)
 
-sigma (a scalar, or a diagonal: sum_i sigma_i d_i^2) is the curvature of the Lagrangian (thesis eq. 3.6 applied to f + lambda^T g
-+ nu^T h, our extension, see docs/thesis_solvers.md).  The elastic variables s, t make the QP
+sigma (a scalar, or a diagonal: sum_i sigma_i d_i^2) is the curvature of the Lagrangian
+(thesis eq. 3.6 applied to f + lambda^T g + nu^T h, our extension, see docs/thesis_solvers.md).
+The elastic variables s, t make the QP
 feasible whatever the move limit; when the linearized constraints can be met inside the box
 and mu exceeds the multipliers, s = t = 0 and the step is the ordinary SQP step (Fletcher's
 Sl1QP).  Solved exactly by Clarabel (interior point; dual variables give the multipliers).
@@ -60,8 +61,8 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     n, p, q = gf.size, g0.size, h0.size
     nv = n + p + 2 * q
     ne = p + 2 * q  # elastic variables s, t+, t-
-    P = sp.csc_matrix((np.broadcast_to(np.asarray(sigma, dtype=float), (n,)).copy(), np.arange(n), np.r_[np.arange(n + 1), np.full(ne, n)]),
-                      shape=(nv, nv))
+    diag = np.broadcast_to(np.asarray(sigma, dtype=float), (n,)).copy()
+    P = sp.csc_matrix((diag, np.arange(n), np.r_[np.arange(n + 1), np.full(ne, n)]), shape=(nv, nv))
     c = np.r_[gf, np.full(ne, mu)]
     # rows: equalities (ZeroCone), then inequalities, elastic >= 0, box (Nonnegative): A v + s = b.
     # Assembled dense (n <= a few hundred here) and converted once: scipy's sparse stacking costs
