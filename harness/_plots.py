@@ -35,7 +35,8 @@ KINDS = ("profile", "data-profile", "history", "thesis", "log-ratio")
 #: solver's own convergence flag: library campaigns where "converged" alone means little
 CAMPAIGN_SUITES = ("cutest", "hs-all")
 #: (thesis solver, established solver) pairs of the log-ratio profiles, where both ran
-LOG_RATIO_PAIRS = (("dynamic-q", "scipy-slsqp"), ("dynamic-q", "ipopt"), ("lfopc", "ipopt"),
+LOG_RATIO_PAIRS = (("dynamic-q", "scipy-slsqp"), ("dynamic-q-plus", "scipy-slsqp"), ("dynamic-q", "ipopt"),
+                   ("lfopc", "ipopt"),
                    ("etopc", "ipopt"), ("sqsd", "scipy-bfgs"))
 STYLES = ("-", "--", "-.", ":")
 REFERENCE_ER = 1e-5  # E^r of a solved run in the thesis's tables (eq. 3.12)

@@ -11,6 +11,7 @@ BUILTIN: dict[str, str] = {
     "polak-ribiere": "solvers.classical:PolakRibiere",
     "lfopc": "solvers.lfopc:LFOPC",
     "dynamic-q": "solvers.dynamic_q:DynamicQ",
+    "dynamic-q-plus": "solvers.dynamic_q_plus:DynamicQPlus",
     "etopc": "solvers.etopc:ETOPC",
     # established solvers (adapters)
     "scipy-cg": "solvers.scipy_adapters:ScipyCG",

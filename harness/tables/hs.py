@@ -44,8 +44,8 @@ RATIO_NOTE = 2.0     # N^fg differing from the thesis by more than this factor i
 THESIS_METHODS = {"sqp": "SQP (thesis)", "dynamic_q": "Dynamic-Q (thesis)"}
 #: our solver -> the thesis column it is compared with for the "more than 2x" notes
 COMPARE = {"dynamic-q": "dynamic_q", "scipy-slsqp": "sqp"}
-SOLVER_ORDER = ("dynamic-q", "lfopc", "etopc", "scipy-slsqp", "nlopt-slsqp", "scipy-trust-constr", "ipopt",
-                "nlopt-mma", "scipy-cobyla")
+SOLVER_ORDER = ("dynamic-q", "dynamic-q-plus", "lfopc", "etopc", "scipy-slsqp", "nlopt-slsqp", "scipy-trust-constr",
+                "ipopt", "nlopt-mma", "scipy-cobyla")
 
 # Known reasons for differences, by problem (cited in the notes when the problem is listed).
 REASONS = {

@@ -65,7 +65,7 @@ SETTINGS: dict[str, dict[str, Any]] = {
     "p": dict(chord=0.1, fd="forward", fd_step=1e-3, eps_f=1e-4, eps_x=1e-3, rho=0.2),
 }
 
-SOLVERS = ("sqsd", "lfopc", "etopc", "dynamic-q", "scipy-slsqp", "ipopt", "nlopt-mma", "scipy-cobyla")
+SOLVERS = ("sqsd", "lfopc", "etopc", "dynamic-q", "dynamic-q-plus", "scipy-slsqp", "ipopt", "nlopt-mma", "scipy-cobyla")
 
 
 # ------------------------------------------------------------------ designs

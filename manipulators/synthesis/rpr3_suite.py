@@ -65,7 +65,7 @@ SETTINGS: dict[str, dict[str, Any]] = {
     "d": dict(phis=(-5 * DEG, 5 * DEG), dextrous=True, start=START_MO, rho=0.05, eps_f=1e-6, eps_x=1e-4,
               fd="central", fd_step=1e-3, chord=0.02, table="5.5"),
 }
-SOLVERS = ("dynamic-q", "scipy-slsqp", "ipopt", "nlopt-mma", "scipy-cobyla")
+SOLVERS = ("dynamic-q", "dynamic-q-plus", "scipy-slsqp", "ipopt", "nlopt-mma", "scipy-cobyla")
 
 
 def design(d) -> RPR3 | None:

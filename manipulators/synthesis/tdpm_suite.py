@@ -45,7 +45,7 @@ SETTINGS: dict[int, dict[str, Any]] = {
 RHO = 0.1            # Dynamic-Q move limit (Section 6.6.2)
 N_STARTS = 5         # "five feasible random starting designs" (Section 6.6.2)
 SEED = 20030606      # fixed seed of the random starts [OWN]
-SOLVERS = ("dynamic-q", "scipy-slsqp", "nlopt-mma", "scipy-cobyla")
+SOLVERS = ("dynamic-q", "dynamic-q-plus", "scipy-slsqp", "nlopt-mma", "scipy-cobyla")
 TABLES = {(3, "L1"): "6.5", (3, "L2"): "6.6", (3, "L3"): "6.7",
           (4, "L1"): "6.8", (4, "L2"): "6.9", (4, "L3"): "6.10"}
 

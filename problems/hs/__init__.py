@@ -35,7 +35,7 @@ RHO_LARGE: dict[str, float] = {"hs072": 100.0, "hs106": 100.0}
 RHO_READING = ("thesis Sec. 3.4: 'except for problems 72 and 106 where step limits and rho = 100 were "
                "used respectively' (garbled); read as rho = 100 for both 72 and 106")
 
-SOLVERS = ("dynamic-q", "lfopc", "etopc", "scipy-slsqp", "scipy-trust-constr", "ipopt",
+SOLVERS = ("dynamic-q", "dynamic-q-plus", "lfopc", "etopc", "scipy-slsqp", "scipy-trust-constr", "ipopt",
            "nlopt-mma", "nlopt-slsqp")
 
 

@@ -20,7 +20,8 @@ from ._select import select
 __all__ = ["SUITE", "INSTANCES", "hs_reference"]
 
 SELECTION = r"name~^HS\d+[A-Z]*$"
-SOLVERS = ("dynamic-q", "lfopc", "etopc", "scipy-slsqp", "scipy-trust-constr", "ipopt", "nlopt-mma", "nlopt-slsqp",
+SOLVERS = ("dynamic-q", "dynamic-q-plus", "lfopc", "etopc", "scipy-slsqp",
+           "scipy-trust-constr", "ipopt", "nlopt-mma", "nlopt-slsqp",
            "sqsd", "scipy-lbfgsb")
 
 

@@ -29,7 +29,7 @@ def test_suite_cases_and_starts():
         if c.start == "R1":                         # (all starts are screened by random_starts)
             assert -p.objective(p.x0) > 0           # non-empty dextrous workspace
         assert p.f_ref == -max(r["A_dstar"] for r in published()[(p.n, c.meta["load"])])
-    assert SUITE.solvers == ("dynamic-q", "scipy-slsqp", "nlopt-mma", "scipy-cobyla")
+    assert SUITE.solvers == ("dynamic-q", "dynamic-q-plus", "scipy-slsqp", "nlopt-mma", "scipy-cobyla")
     # deterministic: a rebuild gives the same starts
     from manipulators.synthesis import tdpm_suite
 

@@ -1,0 +1,97 @@
+"""Dynamic-Q+'s subproblem: a spherical (one-curvature) convex QP with an elastic l1 penalty.
+
+At the iterate x the subproblem in the step d is
+
+    min  grad f^T d + sigma/2 ||d||^2 + mu (sum_j s_j + sum_k (t+_k + t-_k))
+    s.t. g_j + grad g_j^T d <= s_j,   h_k + grad h_k^T d = t+_k - t-_k,   s, t+, t- >= 0
+         max(lower - x, -rho) <= d <= min(upper - x, rho)
+
+sigma (a scalar, or a diagonal: sum_i sigma_i d_i^2) is the curvature of the Lagrangian
+(thesis eq. 3.6 applied to f + lambda^T g + nu^T h, our extension, see docs/thesis_solvers.md).
+The elastic variables s, t make the QP
+feasible whatever the move limit; when the linearized constraints can be met inside the box
+and mu exceeds the multipliers, s = t = 0 and the step is the ordinary SQP step (Fletcher's
+Sl1QP).  Solved exactly by Clarabel (interior point; dual variables give the multipliers).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import clarabel
+import numpy as np
+import scipy.sparse as sp
+
+__all__ = ["ElasticQPResult", "l1_model", "solve_elastic_qp"]
+
+
+@dataclass(frozen=True)
+class ElasticQPResult:
+    """Step d, multipliers lam (ineq, >= 0) and nu (eq), the elastic slack total and the model value."""
+
+    d: np.ndarray
+    lam: np.ndarray
+    nu: np.ndarray
+    elastic: float
+    model: float
+    ok: bool
+
+
+def l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu) -> float:
+    """Model of the l1 merit f + mu (sum max(g,0) + sum |h|) minus f(x), at step d."""
+    v = float(gf @ d) + 0.5 * float(d @ (sigma * d))
+    if g0.size:
+        v += mu * float(np.maximum(g0 + Jg @ d, 0.0).sum())
+    if h0.size:
+        v += mu * float(np.abs(h0 + Jh @ d).sum())
+    return v
+
+
+def _settings() -> clarabel.DefaultSettings:
+    settings = clarabel.DefaultSettings()
+    settings.verbose = False
+    settings.tol_gap_abs = settings.tol_gap_rel = 1e-10
+    settings.tol_feas = 1e-10
+    return settings
+
+
+def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
+                     Jh: np.ndarray, d_lo: np.ndarray, d_up: np.ndarray, mu: float) -> ElasticQPResult:
+    """Solve the elastic QP above (box ``d_lo <= d <= d_up``; ``sigma > 0`` a scalar or a diagonal, shape (n,))."""
+    n, p, q = gf.size, g0.size, h0.size
+    nv = n + p + 2 * q
+    ne = p + 2 * q  # elastic variables s, t+, t-
+    diag = np.broadcast_to(np.asarray(sigma, dtype=float), (n,)).copy()
+    P = sp.csc_matrix((diag, np.arange(n), np.r_[np.arange(n + 1), np.full(ne, n)]), shape=(nv, nv))
+    c = np.r_[gf, np.full(ne, mu)]
+    # rows: equalities (ZeroCone), then inequalities, elastic >= 0, box (Nonnegative): A v + s = b.
+    # Assembled dense (n <= a few hundred here) and converted once: scipy's sparse stacking costs
+    # more than the interior-point solve itself at these sizes.
+    m = q + p + ne + 2 * n
+    A = np.zeros((m, nv))
+    A[:q, :n] = Jh
+    A[:q, n + p:n + p + q] = -np.eye(q)
+    A[:q, n + p + q:] = np.eye(q)
+    A[q:q + p, :n] = Jg
+    A[q:q + p, n:n + p] = -np.eye(p)
+    A[q + p:q + p + ne, n:] = -np.eye(ne)
+    A[q + p + ne:q + p + ne + n, :n] = np.eye(n)
+    A[q + p + ne + n:, :n] = -np.eye(n)
+    b = np.concatenate([-h0, -g0, np.zeros(ne), d_up, -d_lo])
+    A = sp.csc_matrix(A)
+    cones = ([clarabel.ZeroConeT(q)] if q else []) + [clarabel.NonnegativeConeT(m - q)]
+    settings = _settings()
+    sol = clarabel.DefaultSolver(P, c, A, b, cones, settings).solve()
+    v = np.asarray(sol.x)
+    z = np.asarray(sol.z)
+    # the elastic QP is always feasible and bounded: a stalled interior point (insufficient progress,
+    # iteration cap) still returns a usable finite step; only non-finite output is a failure
+    ok = str(sol.status) in ("Solved", "AlmostSolved") or (
+        str(sol.status) in ("InsufficientProgress", "MaxIterations", "MaxTime", "AlmostPrimalInfeasible",
+                            "AlmostDualInfeasible") and bool(np.all(np.isfinite(v)) and np.all(np.isfinite(z))))
+    d = np.clip(v[:n], d_lo, d_up) if ok else np.zeros(n)
+    nu = z[:q].copy() if ok else np.zeros(q)
+    lam = np.maximum(z[q:q + p], 0.0) if ok else np.zeros(p)
+    elastic = float(v[n:].sum()) if ok else 0.0
+    model = l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu)
+    return ElasticQPResult(d, lam, nu, elastic, model, ok)

@@ -1,0 +1,266 @@
+"""Dynamic-Q+: Dynamic-Q (thesis Algorithm 3.2) carried past the thesis (our extension).
+
+Kept from Dynamic-Q: one oracle point per iteration (f, g, h and all gradients, one N^fg),
+spherical quadratic models whose curvature comes from two points (eq. 3.6), exact simple
+bounds (3.7) and a move limit (3.8).  Changed (see docs/thesis_solvers.md, "Dynamic-Q+"):
+
+1. one curvature for the Lagrangian f + lam^T g + nu^T h (eq. 3.6 on L), safeguarded to
+   [sigma_min, sigma_max]; the constraints are linearized, so the subproblem is a convex QP;
+2. the subproblem is solved exactly (`solvers._qp_subproblem`, Clarabel) instead of by LFOPC's
+   penalty compromise, with elastic l1 slacks so it is always feasible;
+3. the move limit is a box trust region adapted by the ratio of actual to predicted reduction
+   of the l1 exact-penalty merit f + mu (sum max(g,0) + sum |h|); rejected steps are not taken
+   but their curvature is used;
+4. stopping tests relative to the problem's scale.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+
+from problems import Oracle
+
+from ._base import AbstractSolver, final, option
+from ._qp_subproblem import l1_model, solve_elastic_qp
+from ._result import SolverOutput, Status
+from ._spherical import two_point_curvature
+
+__all__ = ["DynamicQPlus"]
+
+CURVATURES = ("diagonal", "spherical")
+MU_MAX = 1e10
+COND_MAX = 1e4  # largest ratio of the diagonal curvatures
+
+
+def _finite(ev: dict[str, Any]) -> bool:
+    return bool(np.isfinite(ev["f"]) and all(np.all(np.isfinite(ev[k]))
+                                             for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac")))
+
+
+def _violation(ev: dict[str, Any]) -> float:
+    return max(float(np.max(ev["ineq"], initial=0.0)), float(np.max(np.abs(ev["eq"]), initial=0.0)))
+
+
+def _l1_infeas(ev: dict[str, Any]) -> float:
+    return float(np.maximum(ev["ineq"], 0.0).sum() + np.abs(ev["eq"]).sum())
+
+
+@final
+@dataclasses.dataclass(frozen=True)
+class DynamicQPlus(AbstractSolver):
+    """Dynamic-Q with exact elastic QP subproblems and a trust-region move limit (our extension).
+
+    Iteration: solve the elastic QP at x^i with box radius rho; evaluate the trial point (one
+    N^fg); accept it when the l1 merit falls by at least ``eta`` of the model's prediction.
+    rho shrinks to ``shrink * ||d||_inf`` on rejection and doubles on a very good step that
+    reached the box.  Stops when feasible (violation <= eps_c) and the accepted step or the
+    predicted reduction is small relative to the scale of x and f.
+    """
+
+    name = "dynamic-q-plus"
+    summary = "Dynamic-Q+: spherical Lagrangian curvature, exact elastic QP subproblems, trust region [OWN]"
+    family = "own"
+    handles = frozenset({"bounds", "ineq", "eq"})
+
+    rho: float = option(1.0, "initial move limit (box half-width) relative to max(1, ||x0||_inf)",
+                        "Sec. 3.4 rho = 1 [THESIS], scaled [OWN]")
+    eps_x: float = option(1e-7, "stop: ||d||_inf / (1 + ||x||_inf) below this at a feasible point", "[OWN]")
+    eps_f: float = option(1e-10, "stop: predicted merit reduction / (1 + |f|) below this at a feasible point",
+                          "[OWN]")
+    eps_df: float = option(1e-9, "stop: an accepted interior (full) step between feasible points changed f by "
+                           "less than this relative to 1 + |f| (the thesis's test (3.11), guarded)", "[OWN]; (3.11)")
+    eps_c: float = option(1e-7, "feasibility: every constraint violation <= eps_c", "[OWN]")
+    eta: float = option(0.1, "accept a step when actual / predicted merit reduction >= eta", "[OWN] trust region")
+    shrink: float = option(0.3, "on rejection rho = shrink * ||d||_inf", "[OWN] trust region")
+    sigma_min: float = option(1e-8, "lower safeguard on the spherical curvature", "[OWN]")
+    sigma_max: float = option(1e8, "upper safeguard on the spherical curvature", "[OWN]")
+    curvature: str = option("spherical", "'diagonal': per-variable curvatures of the Lagrangian by the weak-secant "
+                            "update started from eq. (3.6); 'spherical': one curvature, eq. (3.6) on the Lagrangian",
+                            "[OWN]; eq. (3.6) [THESIS]; Zhu-Nazareth-Wolkowicz diagonal weak secant")
+    constraint_curvature: bool = option(False, "correct the linearized constraints by their spherical curvatures "
+                                        "(3.6) at the previous subproblem step length (second-order correction "
+                                        "without oracle calls)", "[OWN]; eq. (3.6) [THESIS]")
+    mu0: float = option(10.0, "initial l1 penalty weight (raised to 2 x the largest multiplier)", "[OWN]")
+    memory: int = option(4, "non-monotone merit: compare with the worst of this many last accepted points",
+                         "[OWN] (Grippo-Lampariello-Lucidi style; 1 = monotone)")
+    max_iter: int = option(200, "maximum number of oracle points (iterations incl. rejected trials)", "[OWN]")
+
+    def check_together(self) -> None:  # called by AbstractSolver.__post_init__ after the per-option checks
+        for k in ("rho", "sigma_min", "sigma_max", "mu0"):
+            v = getattr(self, k)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise ValueError(f"dynamic-q-plus: {k} must be a positive finite number, got {v!r}")
+        for k in ("eps_x", "eps_f", "eps_df", "eps_c"):
+            v = getattr(self, k)
+            if not (isinstance(v, (int, float)) and v >= 0):
+                raise ValueError(f"dynamic-q-plus: {k} must be >= 0, got {v!r}")
+        for k in ("eta", "shrink"):
+            v = getattr(self, k)
+            if not (isinstance(v, (int, float)) and 0 < v < 1):
+                raise ValueError(f"dynamic-q-plus: {k} must be in (0, 1), got {v!r}")
+        if self.curvature not in CURVATURES:
+            raise ValueError(f"dynamic-q-plus: curvature must be one of {CURVATURES}, got {self.curvature!r}")
+        if not (isinstance(self.max_iter, (int, np.integer)) and self.max_iter >= 1):
+            raise ValueError(f"dynamic-q-plus: max_iter must be an integer >= 1, got {self.max_iter!r}")
+
+    def _curvature(self, ev_old, ev_new, lam, nu, dx) -> float | None:
+        """Eq. (3.6) on the Lagrangian: 2 [L(x_new) - L(x_old) - grad L(x_old)^T dx] / ||dx||^2."""
+        dd = float(dx @ dx)
+        if dd <= 0.0:
+            return None
+        L_old = ev_old["f"] + float(lam @ ev_old["ineq"]) + float(nu @ ev_old["eq"])
+        L_new = ev_new["f"] + float(lam @ ev_new["ineq"]) + float(nu @ ev_new["eq"])
+        gL = ev_old["g"] + ev_old["ineq_jac"].T @ lam + ev_old["eq_jac"].T @ nu
+        return 2.0 * (L_new - L_old - float(gL @ dx)) / dd
+
+    def _update(self, sigma, s_sph, ev_old, ev_new, lam, nu, dx, first: bool) -> np.ndarray:
+        """New curvatures after the step dx (from x_old to x_new), safeguarded to [sigma_min, sigma_max].
+
+        'spherical' (and the first update of 'diagonal'): sigma_i = eq. (3.6) on the Lagrangian.
+        'diagonal': least change of diag(sigma) in the Frobenius norm that meets the weak secant
+        condition dx^T diag(sigma) dx = dx^T y, y the change of the Lagrangian's gradient.
+        """
+        if self.curvature == "spherical" or first:
+            new = np.full(dx.size, s_sph)
+        else:
+            y = (ev_new["g"] - ev_old["g"] + (ev_new["ineq_jac"] - ev_old["ineq_jac"]).T @ lam
+                 + (ev_new["eq_jac"] - ev_old["eq_jac"]).T @ nu)
+            s2 = dx * dx
+            new = sigma + (float(dx @ y) - float(s2 @ sigma)) / float(s2 @ s2) * s2
+        new = np.clip(new, self.sigma_min, self.sigma_max)
+        # [OWN] keep the diagonal's spread <= COND_MAX: a near-zero curvature makes the model linear
+        # in that variable and the steps run to the move limit (seen on HS72)
+        return np.maximum(new, float(new.max()) / COND_MAX)
+
+    def minimize(self, oracle: Oracle) -> SolverOutput:
+        lo, up = oracle.lower, oracle.upper
+        x = np.clip(oracle.x0, lo, up)
+        ev0 = oracle.evaluate(x)
+        if not _finite(ev0):
+            return SolverOutput(x, Status.ERROR, "non-finite f, gradient or constraint at x0", nit=0)
+        # [OWN] fixed scaling from x0: constraints by 1/||grad|| where it exceeds 1 (as dynamic-q's
+        # 'cap' normalization) and f likewise, so mu and the QP are well scaled (e.g. HS106)
+        sf = 1.0 / max(1.0, float(np.linalg.norm(ev0["g"])))
+        sg = 1.0 / np.maximum(np.linalg.norm(ev0["ineq_jac"], axis=1), 1.0)
+        sh = 1.0 / np.maximum(np.linalg.norm(ev0["eq_jac"], axis=1), 1.0)
+
+        def scaled(e: dict[str, Any]) -> dict[str, Any]:
+            return {"f": sf * e["f"], "g": sf * e["g"], "ineq": sg * e["ineq"], "ineq_jac": sg[:, None] * e["ineq_jac"],
+                    "eq": sh * e["eq"], "eq_jac": sh[:, None] * e["eq_jac"], "raw": e}
+
+        ev = scaled(ev0)
+        scale_x = max(1.0, float(np.max(np.abs(x), initial=0.0)))
+        rho = float(self.rho) * scale_x
+        n_upd = 0
+        bq, cq = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)  # constraint curvatures (3.6)
+        sigma: Any = np.ones(oracle.n)  # P[0]: no curvature information yet (the thesis' P[0] is linear)
+        mu = float(self.mu0)
+        log: list[dict[str, Any]] = []
+        n_rej = 0
+        recent: list[dict[str, Any]] = [ev]  # [OWN] non-monotone reference: last accepted points
+        for it in range(1, self.max_iter + 1):
+            res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
+                                   np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+            if not res.ok:  # [OWN] numerical trouble in the QP solver: retry with a smaller move limit
+                rho *= self.shrink
+                if rho / (1.0 + float(np.max(np.abs(x), initial=0.0))) < 1e-3 * self.eps_x:
+                    return SolverOutput(x, Status.ERROR, "QP subproblem failed", nit=it,
+                                        extra=self._extra(log, n_rej))
+                continue
+            mult = max(float(np.max(res.lam, initial=0.0)), float(np.max(np.abs(res.nu), initial=0.0)))
+            if mult > 0.5 * mu and res.elastic <= self.eps_c:
+                # [OWN] the exact-penalty weight must exceed the multipliers.  Not raised while the
+                # slacks are in use: then the multipliers sit at mu because the move limit cuts the
+                # linearization, not because mu is too small (raising it there ran mu to 1e7 on HS104);
+                # a merit-stationary infeasible point raises it below
+                mu = 2.0 * mult
+                res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
+                                       np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+            if self.constraint_curvature and (np.any(bq) or np.any(cq)):
+                # [OWN] the thesis's constraint curvatures (3.6) as a model-based second-order
+                # correction: g~_j(d) = g_j + grad g_j^T d + b_j/2 ||d||^2 with ||d|| frozen at the
+                # previous solution (fixed point, no oracle calls); keeps steps on curved
+                # constraints (the Maratos zig-zag of HS27)
+                rc = res
+                for _ in range(2):
+                    dd = float(rc.d @ rc.d)
+                    rc = solve_elastic_qp(ev["g"], sigma, ev["ineq"] + 0.5 * bq * dd, ev["ineq_jac"],
+                                          ev["eq"] + 0.5 * cq * dd, ev["eq_jac"],
+                                          np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+                # predicted reduction of the curvature-corrected model at its own step; kept only if
+                # it is a descent step of that model
+                dd = float(rc.d @ rc.d)
+                mq = l1_model(rc.d, ev["g"], sigma, ev["ineq"] + 0.5 * bq * dd, ev["ineq_jac"],
+                              ev["eq"] + 0.5 * cq * dd, ev["eq_jac"], mu)
+                if rc.ok and mu * _l1_infeas(ev) - mq > 0.0:
+                    res = dataclasses.replace(rc, model=mq)
+            d = res.d
+            viol = _violation(ev["raw"])
+            phi = ev["f"] + mu * _l1_infeas(ev)
+            pred = mu * _l1_infeas(ev) - res.model  # model reduction of phi
+            dn = float(np.max(np.abs(d), initial=0.0))
+            xs = 1.0 + float(np.max(np.abs(x), initial=0.0))
+            if viol <= self.eps_c and (dn / xs < self.eps_x or pred / (1.0 + abs(ev["f"])) < self.eps_f):
+                return SolverOutput(x, Status.CONVERGED, "feasible and step / predicted reduction below tolerance",
+                                    nit=it, extra=self._extra(log, n_rej))
+            if (dn == 0.0 or pred <= 0.0) and viol > self.eps_c and mu < MU_MAX:
+                mu *= 10.0  # [OWN] stationary for the merit but infeasible: weigh feasibility more
+                continue
+            if dn == 0.0 or pred <= 0.0:
+                return SolverOutput(x, Status.FAILED if viol > self.eps_c else Status.CONVERGED,
+                                    "no descent step for the l1 merit (stationary for the model)", nit=it,
+                                    extra=self._extra(log, n_rej))
+            xt = np.clip(x + d, lo, up)
+            evt = scaled(oracle.evaluate(xt))
+            ok = _finite(evt)
+            phit = evt["f"] + mu * _l1_infeas(evt) if ok else math.inf
+            # non-monotone ratio (against the worst of the last few accepted merits) so that a
+            # step along a curved constraint is not rejected by the l1 merit (Maratos effect)
+            phi_ref = max(phi, max(e["f"] + mu * _l1_infeas(e) for e in recent))
+            ratio = (phi_ref - phit) / pred
+            log.append({"i": it, "f": ev["f"], "max_violation": viol, "rho": rho, "sigma": sigma, "mu": mu,
+                        "ratio": ratio, "elastic": res.elastic})
+            lam_new, nu_new = res.lam, res.nu
+            if ok:
+                s = self._curvature(ev, evt, lam_new, nu_new, xt - x)
+            if ok and self.constraint_curvature:
+                if ratio >= self.eta:  # eq. (3.6) at the new iterate xt from the old one
+                    bq = two_point_curvature(ev["ineq"], evt["ineq"], evt["ineq_jac"], x - xt)
+                    cq = two_point_curvature(ev["eq"], evt["eq"], evt["eq_jac"], x - xt)
+                else:  # the iterate stays: (3.6) at x from the rejected trial point
+                    bq = two_point_curvature(evt["ineq"], ev["ineq"], ev["ineq_jac"], xt - x)
+                    cq = two_point_curvature(evt["eq"], ev["eq"], ev["eq_jac"], xt - x)
+            if ratio >= self.eta:
+                if ok and s is not None:
+                    sigma = self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x, first=n_upd == 0)
+                    n_upd += 1
+                if ratio >= 0.25 and dn >= 0.99 * rho:  # the box limited a useful step
+                    rho *= 2.0
+                f_change = abs(evt["f"] - ev["f"]) / (1.0 + abs(ev["f"]))
+                interior = dn < 0.99 * rho  # the full QP step, not cut by the move limit
+                x, ev = xt, evt
+                if (interior and ratio >= 0.75 and f_change < self.eps_df and viol <= self.eps_c
+                        and _violation(evt["raw"]) <= self.eps_c):
+                    return SolverOutput(x, Status.CONVERGED, "feasible full step with normalized change of f "
+                                        "< eps_df (as 3.11)", nit=it, extra=self._extra(log, n_rej))
+                recent = (recent + [evt])[-self.memory:]
+            else:
+                n_rej += 1
+                rho = self.shrink * dn
+                if ok and s is not None:  # the model was too optimistic along d: only raise curvatures
+                    sigma = np.maximum(sigma, self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x,
+                                                           first=n_upd == 0))
+                    n_upd += 1
+                if rho / xs < 1e-3 * self.eps_x:
+                    return SolverOutput(x, Status.CONVERGED if viol <= self.eps_c else Status.FAILED,
+                                        "move limit collapsed", nit=it, extra=self._extra(log, n_rej))
+        return SolverOutput(x, Status.MAX_ITER, f"max_iter = {self.max_iter} oracle points reached",
+                            nit=self.max_iter, extra=self._extra(log, n_rej))
+
+    @staticmethod
+    def _extra(log: list[dict[str, Any]], n_rej: int) -> dict[str, Any]:
+        return {"n_rejected": n_rej, "iterations": log}

@@ -1,0 +1,41 @@
+"""pytest-benchmark benchmarks of Dynamic-Q+'s per-iteration overhead (disabled by default;
+``python -m pytest tests/solvers/test_benchmarks_dynamic_q_plus.py --benchmark-enable --benchmark-only``).
+
+The overhead is the solver's own time: wall time minus the time spent in the problem's functions
+(measured by the oracle), per oracle point; ``extra_info`` records it beside SLSQP's."""
+
+import numpy as np
+import pytest
+
+from problems import get_suite
+from solvers import solve
+from solvers._qp_subproblem import solve_elastic_qp
+
+
+@pytest.fixture(scope="module")
+def hs_problems():
+    suite = get_suite("hs")
+    return [suite.case(c).problem for c in ("hs071/n=4/x0", "hs100/n=7/x0", "hs118/n=15/x0")]
+
+
+def _overhead_ms(problems, solver):
+    runs = [solve(p, solver) for p in problems]
+    return 1e3 * sum(r.wall_time - r.time_in_evals for r in runs) / sum(max(r.nfg, 1) for r in runs)
+
+
+@pytest.mark.parametrize("solver", ["dynamic-q-plus", "scipy-slsqp"])
+def test_overhead_per_oracle_point(benchmark, hs_problems, solver):
+    """Per-iteration overhead on three hs problems (n = 4, 7, 15)."""
+    ms = benchmark(lambda: _overhead_ms(hs_problems, solver))
+    benchmark.extra_info["overhead_ms_per_point"] = ms
+    assert np.isfinite(ms) and ms > 0
+
+
+def test_elastic_qp_n20(benchmark):
+    """One elastic QP subproblem, n = 20, 15 inequalities, 5 equalities."""
+    rng = np.random.default_rng(0)
+    n, p, q = 20, 15, 5
+    args = (rng.normal(size=n), 1.0, rng.normal(size=p), rng.normal(size=(p, n)), rng.normal(size=q),
+            rng.normal(size=(q, n)), -np.ones(n), np.ones(n), 10.0)
+    res = benchmark(lambda: solve_elastic_qp(*args))
+    assert res.ok

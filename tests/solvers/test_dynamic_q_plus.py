@@ -1,0 +1,90 @@
+"""Dynamic-Q+ (our extension of thesis Algorithm 3.2): the elastic QP subproblem and small solves."""
+
+from __future__ import annotations
+
+import itertools
+
+import cvxpy as cp
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from problems import hs
+from solvers._qp_subproblem import l1_model, solve_elastic_qp
+from solvers._solve import solve
+from solvers.dynamic_q_plus import DynamicQPlus
+
+
+def _instance(seed: int, n: int, p: int, q: int):
+    rng = np.random.default_rng(seed)
+    return (rng.normal(size=n), float(rng.uniform(0.1, 5.0)), rng.normal(size=p), rng.normal(size=(p, n)),
+            rng.normal(size=q), rng.normal(size=(q, n)), -rng.uniform(0.1, 2.0, n), rng.uniform(0.1, 2.0, n),
+            float(rng.uniform(1.0, 50.0)))
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.integers(1, 6), st.integers(0, 4), st.integers(0, 2))
+def test_elastic_qp_matches_cvxpy(seed, n, p, q):
+    """The Clarabel solution has the optimal l1-model value computed independently by cvxpy."""
+    gf, sigma, g0, Jg, h0, Jh, lo, up, mu = _instance(seed, n, p, q)
+    res = solve_elastic_qp(gf, sigma, g0, Jg, h0, Jh, lo, up, mu)
+    assert res.ok and np.all(res.d >= lo - 1e-9) and np.all(res.d <= up + 1e-9)
+    d = cp.Variable(n)
+    obj = gf @ d + sigma / 2 * cp.sum_squares(d)
+    if p:
+        obj += mu * cp.sum(cp.pos(g0 + Jg @ d))
+    if q:
+        obj += mu * cp.norm1(h0 + Jh @ d)
+    prob = cp.Problem(cp.Minimize(obj), [d >= lo, d <= up])
+    prob.solve(solver=cp.CLARABEL)
+    assert res.model == pytest.approx(prob.value, abs=1e-6 * (1 + abs(prob.value)))
+    assert np.all(res.lam >= 0) and np.all(res.lam <= mu * (1 + 1e-6))
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.integers(1, 6), st.integers(0, 4))
+def test_elastic_qp_kkt_when_not_elastic(seed, n, p):
+    """With a large box and mu, a feasible linearization gives the SQP step: KKT holds with the multipliers."""
+    gf, sigma, g0, Jg, _, _, _, _, _ = _instance(seed, n, p, 0)
+    g0 = -np.abs(g0) - 0.1  # d = 0 is strictly feasible
+    box = np.full(n, 1e3)
+    res = solve_elastic_qp(gf, sigma, g0, Jg, np.zeros(0), np.zeros((0, n)), -box, box, 1e6)
+    assert res.elastic == pytest.approx(0.0, abs=1e-7)
+    grad = gf + sigma * res.d + Jg.T @ res.lam
+    assert np.allclose(grad, 0.0, atol=1e-6)
+    g = g0 + Jg @ res.d
+    assert np.all(g <= 1e-7) and np.allclose(res.lam * g, 0.0, atol=1e-6)
+
+
+def test_elastic_mode_when_linearization_infeasible_in_box():
+    """g = 5 + d_1 <= 0 cannot hold with |d| <= 1: the slack absorbs the rest, d goes to the box edge."""
+    res = solve_elastic_qp(np.zeros(2), 1.0, np.array([5.0]), np.array([[1.0, 0.0]]), np.zeros(0),
+                           np.zeros((0, 2)), -np.ones(2), np.ones(2), 10.0)
+    assert res.ok and res.d[0] == pytest.approx(-1.0, abs=1e-7) and res.elastic == pytest.approx(4.0, abs=1e-6)
+    assert res.lam[0] == pytest.approx(10.0, rel=1e-6)  # multiplier at the penalty weight
+    assert res.model == pytest.approx(l1_model(res.d, np.zeros(2), 1.0, np.array([5.0]), np.array([[1.0, 0.0]]),
+                                               np.zeros(0), np.zeros((0, 2)), 10.0))
+
+
+def test_trust_region_rejects_and_shrinks():
+    """On Rosenbrock-like HS2 the ratio test rejects some trial points, and every rejection shrinks rho."""
+    r = solve(hs.problem("2"), "dynamic-q-plus")
+    log = r.extra["iterations"]
+    assert r.extra["n_rejected"] >= 1
+    for a, b in itertools.pairwise(log):
+        if a["ratio"] < 0.1:  # the default eta
+            assert b["rho"] < a["rho"]
+
+
+@pytest.mark.parametrize("pid", ["10", "29", "71", "106"])
+def test_small_hs_sample_solved(pid):
+    prob = hs.problem(pid)
+    r = solve(prob, "dynamic-q-plus")
+    assert r.status == "converged" and r.max_violation <= 1e-6
+    assert abs(r.f - prob.f_ref) / max(1.0, abs(prob.f_ref)) <= 1e-5
+
+
+def test_bad_options_rejected():
+    with pytest.raises(ValueError, match="dynamic-q-plus: eta"):
+        DynamicQPlus(eta=1.5)
