@@ -127,8 +127,14 @@ def _per_case(df: pd.DataFrame, order: list[str]) -> Table:
     return Table(name="campaign_runs", title="N^fg and outcome of every run", frame=pd.DataFrame(rows), notes=notes)
 
 
-def campaign_tables(runs: pd.DataFrame, solver_order: list[str] | None = None) -> list[Table]:
+def campaign_tables(runs: pd.DataFrame, solver_order: list[str] | None = None, prefix: str = "campaign",
+                    suite: str = "") -> list[Table]:
+    """The summary and per-run tables, named ``<prefix>_summary`` and ``<prefix>_runs``."""
     df = classify_runs(runs)
     labels = list(dict.fromkeys(solver_order or [])) + sorted(set(df["label"]) - set(solver_order or []))
     labels = [lab for lab in labels if lab in set(df["label"])]
-    return [_summary(df, labels), _per_case(df, labels)]
+    out = [_summary(df, labels), _per_case(df, labels)]
+    for t in out:
+        t.name = t.name.replace("campaign", prefix)
+        t.title = f"{suite}: {t.title}" if suite else t.title
+    return out

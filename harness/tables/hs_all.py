@@ -11,8 +11,4 @@ from ._campaign import campaign_tables
 def tables(runs: pd.DataFrame) -> list[Table]:
     from problems.s2mpj.hs_all_suite import SOLVERS
 
-    out = campaign_tables(runs, list(SOLVERS))
-    for t in out:
-        t.name = t.name.replace("campaign", "hs_all")
-        t.title = "hs-all: " + t.title
-    return out
+    return campaign_tables(runs, list(SOLVERS), prefix="hs_all", suite="hs-all")
