@@ -39,12 +39,18 @@ class ElasticQPResult:
 
 def l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu) -> float:
     """Model of the l1 merit f + mu (sum max(g,0) + sum |h|) minus f(x), at step d."""
-    v = float(gf @ d) + 0.5 * float(d @ (sigma * d))
+    v = float(gf @ d) + 0.5 * float(d @ _hess_times(sigma, d))
     if g0.size:
         v += mu * float(np.maximum(g0 + Jg @ d, 0.0).sum())
     if h0.size:
         v += mu * float(np.abs(h0 + Jh @ d).sum())
     return v
+
+
+def _hess_times(sigma, d: np.ndarray) -> np.ndarray:
+    """The model Hessian (scalar, diagonal of shape (n,), or full matrix (n, n)) times d."""
+    sigma = np.asarray(sigma, dtype=float)
+    return sigma @ d if sigma.ndim == 2 else sigma * d
 
 
 def _settings() -> clarabel.DefaultSettings:
@@ -57,12 +63,17 @@ def _settings() -> clarabel.DefaultSettings:
 
 def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
                      Jh: np.ndarray, d_lo: np.ndarray, d_up: np.ndarray, mu: float) -> ElasticQPResult:
-    """Solve the elastic QP above (box ``d_lo <= d <= d_up``; ``sigma > 0`` a scalar or a diagonal, shape (n,))."""
+    """Solve the elastic QP above (box ``d_lo <= d <= d_up``; ``sigma`` a positive scalar,
+    a positive diagonal of shape (n,) or a positive definite matrix of shape (n, n))."""
     n, p, q = gf.size, g0.size, h0.size
     nv = n + p + 2 * q
     ne = p + 2 * q  # elastic variables s, t+, t-
-    diag = np.broadcast_to(np.asarray(sigma, dtype=float), (n,)).copy()
-    P = sp.csc_matrix((diag, np.arange(n), np.r_[np.arange(n + 1), np.full(ne, n)]), shape=(nv, nv))
+    sig = np.asarray(sigma, dtype=float)
+    if sig.ndim == 2:  # full (quasi-Newton) Hessian: Clarabel reads the upper triangle
+        P = sp.block_diag([sp.triu(sp.csc_matrix(sig)), sp.csc_matrix((ne, ne))], format="csc")
+    else:
+        diag = np.broadcast_to(sig, (n,)).copy()
+        P = sp.csc_matrix((diag, np.arange(n), np.r_[np.arange(n + 1), np.full(ne, n)]), shape=(nv, nv))
     c = np.r_[gf, np.full(ne, mu)]
     # rows: equalities (ZeroCone), then inequalities, elastic >= 0, box (Nonnegative): A v + s = b.
     # Assembled dense (n <= a few hundred here) and converted once: scipy's sparse stacking costs

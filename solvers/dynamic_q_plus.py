@@ -31,7 +31,7 @@ from ._spherical import two_point_curvature
 
 __all__ = ["DynamicQPlus"]
 
-CURVATURES = ("diagonal", "spherical")
+CURVATURES = ("bfgs", "diagonal", "spherical")
 MU_MAX = 1e10
 COND_MAX = 1e4  # largest ratio of the diagonal curvatures
 
@@ -69,22 +69,26 @@ class DynamicQPlus(AbstractSolver):
     rho: float = option(1.0, "initial move limit (box half-width) relative to max(1, ||x0||_inf)",
                         "Sec. 3.4 rho = 1 [THESIS], scaled [OWN]")
     eps_x: float = option(1e-7, "stop: ||d||_inf / (1 + ||x||_inf) below this at a feasible point", "[OWN]")
-    eps_f: float = option(1e-10, "stop: predicted merit reduction / (1 + |f|) below this at a feasible point",
+    eps_f: float = option(1e-14, "stop: predicted merit reduction / (1 + |f|) below this at a feasible point",
                           "[OWN]")
-    eps_df: float = option(1e-9, "stop: an accepted interior (full) step between feasible points changed f by "
+    eps_df: float = option(0.0, "stop: an accepted interior (full) step between feasible points changed f by "
                            "less than this relative to 1 + |f| (the thesis's test (3.11), guarded)", "[OWN]; (3.11)")
     eps_c: float = option(1e-7, "feasibility: every constraint violation <= eps_c", "[OWN]")
     eta: float = option(0.1, "accept a step when actual / predicted merit reduction >= eta", "[OWN] trust region")
     shrink: float = option(0.3, "on rejection rho = shrink * ||d||_inf", "[OWN] trust region")
     sigma_min: float = option(1e-8, "lower safeguard on the spherical curvature", "[OWN]")
     sigma_max: float = option(1e8, "upper safeguard on the spherical curvature", "[OWN]")
-    curvature: str = option("spherical", "'diagonal': per-variable curvatures of the Lagrangian by the weak-secant "
+    curvature: str = option("bfgs", "'bfgs': Powell-damped BFGS matrix of the Lagrangian started from "
+                            "eq. (3.6)'s spherical curvature; 'diagonal': per-variable curvatures of the Lagrangian by the weak-secant "
                             "update started from eq. (3.6); 'spherical': one curvature, eq. (3.6) on the Lagrangian",
                             "[OWN]; eq. (3.6) [THESIS]; Zhu-Nazareth-Wolkowicz diagonal weak secant")
     constraint_curvature: bool = option(False, "correct the linearized constraints by their spherical curvatures "
                                         "(3.6) at the previous subproblem step length (second-order correction "
                                         "without oracle calls)", "[OWN]; eq. (3.6) [THESIS]")
     mu0: float = option(10.0, "initial l1 penalty weight (raised to 2 x the largest multiplier)", "[OWN]")
+    second_order_correction: bool = option(True, "on a rejected step that raised the constraint violation, try "
+                                           "one corrected step (one more oracle point)",
+                                           "[OWN] Fletcher's second-order correction")
     memory: int = option(4, "non-monotone merit: compare with the worst of this many last accepted points",
                          "[OWN] (Grippo-Lampariello-Lucidi style; 1 = monotone)")
     max_iter: int = option(200, "maximum number of oracle points (iterations incl. rejected trials)", "[OWN]")
@@ -124,6 +128,8 @@ class DynamicQPlus(AbstractSolver):
         'diagonal': least change of diag(sigma) in the Frobenius norm that meets the weak secant
         condition dx^T diag(sigma) dx = dx^T y, y the change of the Lagrangian's gradient.
         """
+        if self.curvature == "bfgs":
+            return self._bfgs(sigma, s_sph, ev_old, ev_new, lam, nu, dx, first)
         if self.curvature == "spherical" or first:
             new = np.full(dx.size, s_sph)
         else:
@@ -135,6 +141,36 @@ class DynamicQPlus(AbstractSolver):
         # [OWN] keep the diagonal's spread <= COND_MAX: a near-zero curvature makes the model linear
         # in that variable and the steps run to the move limit (seen on HS72)
         return np.maximum(new, float(new.max()) / COND_MAX)
+
+    def _bfgs(self, B, s_sph, ev_old, ev_new, lam, nu, dx, first: bool) -> np.ndarray:
+        """Powell-damped BFGS update of the Lagrangian Hessian B from the step dx.
+
+        The first update starts from B0 = sigma I with sigma the spherical curvature of eq. (3.6)
+        (Dynamic-Q's own estimate, safeguarded), so the quasi-Newton matrix refines the thesis's
+        one-number model with the same one point per iteration.  Damping (Powell 1978) keeps B
+        positive definite when the Lagrangian's curvature along dx is negative or tiny.
+        """
+        y = (ev_new["g"] - ev_old["g"] + (ev_new["ineq_jac"] - ev_old["ineq_jac"]).T @ lam
+             + (ev_new["eq_jac"] - ev_old["eq_jac"]).T @ nu)
+        if first:
+            B = float(np.clip(s_sph, self.sigma_min, self.sigma_max)) * np.eye(dx.size)
+        Bs = B @ dx
+        sBs = float(dx @ Bs)
+        sy = float(dx @ y)
+        if not (sBs > 0.0 and np.all(np.isfinite(y))):
+            return B
+        theta = 1.0 if sy >= 0.2 * sBs else 0.8 * sBs / (sBs - sy)
+        r = theta * y + (1.0 - theta) * Bs
+        sr = float(dx @ r)
+        if sr <= 1e-12 * sBs:
+            return B
+        Bn = B - np.outer(Bs, Bs) / sBs + np.outer(r, r) / sr
+        Bn = 0.5 * (Bn + Bn.T)
+        # safeguard: eigenvalues within [sigma_min, sigma_max] (B stays positive definite)
+        w, V = np.linalg.eigh(Bn)
+        if w[0] < self.sigma_min or w[-1] > self.sigma_max:
+            Bn = (V * np.clip(w, self.sigma_min, self.sigma_max)) @ V.T
+        return Bn
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         lo, up = oracle.lower, oracle.upper
@@ -157,7 +193,7 @@ class DynamicQPlus(AbstractSolver):
         rho = float(self.rho) * scale_x
         n_upd = 0
         bq, cq = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)  # constraint curvatures (3.6)
-        sigma: Any = np.ones(oracle.n)  # P[0]: no curvature information yet (the thesis' P[0] is linear)
+        sigma: Any = np.eye(oracle.n) if self.curvature == "bfgs" else np.ones(oracle.n)  # P[0]: no curvature information yet (the thesis' P[0] is linear)
         mu = float(self.mu0)
         log: list[dict[str, Any]] = []
         n_rej = 0
@@ -222,8 +258,25 @@ class DynamicQPlus(AbstractSolver):
             # step along a curved constraint is not rejected by the l1 merit (Maratos effect)
             phi_ref = max(phi, max(e["f"] + mu * _l1_infeas(e) for e in recent))
             ratio = (phi_ref - phit) / pred
-            log.append({"i": it, "f": ev["f"], "max_violation": viol, "rho": rho, "sigma": sigma, "mu": mu,
-                        "ratio": ratio, "elastic": res.elastic})
+            n_soc_step = 0
+            if (self.second_order_correction and ok and ratio < self.eta and _l1_infeas(evt) > _l1_infeas(ev)):
+                # [OWN] second-order correction (Fletcher 1982): the linearization at x shifted to the
+                # constraint values at the trial point, so the corrected step follows curved constraints
+                # where the l1 merit rejected the plain one (Maratos effect; HS27, HS47).  One more point.
+                rs = solve_elastic_qp(ev["g"], sigma, evt["ineq"] - ev["ineq_jac"] @ d, ev["ineq_jac"],
+                                      evt["eq"] - ev["eq_jac"] @ d, ev["eq_jac"],
+                                      np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+                if rs.ok and float(np.max(np.abs(rs.d), initial=0.0)) > 0.0:
+                    xc = np.clip(x + rs.d, lo, up)
+                    evc = scaled(oracle.evaluate(xc))
+                    if _finite(evc):
+                        ratio_c = (phi_ref - (evc["f"] + mu * _l1_infeas(evc))) / pred
+                        if ratio_c >= self.eta:
+                            xt, evt, ratio, n_soc_step = xc, evc, ratio_c, 1
+            log.append({"i": it, "f": ev["f"], "max_violation": viol, "rho": rho,
+                        "sigma": np.diag(sigma).copy() if np.ndim(sigma) == 2 else sigma, "mu": mu,
+                        "ratio": ratio, "elastic": res.elastic, "pred": pred, "dn": dn,
+                        "soc": n_soc_step})
             lam_new, nu_new = res.lam, res.nu
             if ok:
                 s = self._curvature(ev, evt, lam_new, nu_new, xt - x)
@@ -251,7 +304,10 @@ class DynamicQPlus(AbstractSolver):
             else:
                 n_rej += 1
                 rho = self.shrink * dn
-                if ok and s is not None:  # the model was too optimistic along d: only raise curvatures
+                if ok and s is not None and self.curvature == "bfgs":  # secant information of the trial
+                    sigma = self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x, first=n_upd == 0)
+                    n_upd += 1
+                elif ok and s is not None:  # the model was too optimistic along d: only raise curvatures
                     sigma = np.maximum(sigma, self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x,
                                                            first=n_upd == 0))
                     n_upd += 1
