@@ -197,6 +197,7 @@ class DynamicQPlus(AbstractSolver):
         mu = float(self.mu0)
         log: list[dict[str, Any]] = []
         n_rej = 0
+        restarted, s_last = False, 1.0  # [OWN] one restart of the quasi-Newton matrix before stopping
         recent: list[dict[str, Any]] = [ev]  # [OWN] non-monotone reference: last accepted points
         for it in range(1, self.max_iter + 1):
             res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
@@ -241,6 +242,14 @@ class DynamicQPlus(AbstractSolver):
             dn = float(np.max(np.abs(d), initial=0.0))
             xs = 1.0 + float(np.max(np.abs(x), initial=0.0))
             if viol <= self.eps_c and (dn / xs < self.eps_x or pred / (1.0 + abs(ev["f"])) < self.eps_f):
+                if self.curvature == "bfgs" and not restarted and n_upd > 1:
+                    # [OWN] the quasi-Newton matrix can keep a large curvature from far away in
+                    # directions it has not explored since (HS64: steps of 1e-6 at a non-stationary
+                    # point).  Before stopping, restart once from Dynamic-Q's spherical model, eq.
+                    # (3.6) along the last step; stop only if that model finds no step either.
+                    sigma = np.clip(s_last, self.sigma_min, self.sigma_max) * np.eye(oracle.n)
+                    restarted = True
+                    continue
                 return SolverOutput(x, Status.CONVERGED, "feasible and step / predicted reduction below tolerance",
                                     nit=it, extra=self._extra(log, n_rej))
             if (dn == 0.0 or pred <= 0.0) and viol > self.eps_c and mu < MU_MAX:
@@ -280,6 +289,8 @@ class DynamicQPlus(AbstractSolver):
             lam_new, nu_new = res.lam, res.nu
             if ok:
                 s = self._curvature(ev, evt, lam_new, nu_new, xt - x)
+                if s is not None and math.isfinite(s):
+                    s_last = s
             if ok and self.constraint_curvature:
                 if ratio >= self.eta:  # eq. (3.6) at the new iterate xt from the old one
                     bq = two_point_curvature(ev["ineq"], evt["ineq"], evt["ineq_jac"], x - xt)
