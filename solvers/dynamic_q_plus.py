@@ -71,7 +71,7 @@ class DynamicQPlus(AbstractSolver):
     eps_x: float = option(1e-7, "stop: ||d||_inf / (1 + ||x||_inf) below this at a feasible point", "[OWN]")
     eps_f: float = option(1e-14, "stop: predicted merit reduction / (1 + |f|) below this at a feasible point",
                           "[OWN]")
-    eps_df: float = option(0.0, "stop: an accepted interior (full) step between feasible points changed f by "
+    eps_df: float = option(1e-9, "stop: an accepted interior (full) step between feasible points changed f by "
                            "less than this relative to 1 + |f| (the thesis's test (3.11), guarded)", "[OWN]; (3.11)")
     eps_c: float = option(1e-7, "feasibility: every constraint violation <= eps_c", "[OWN]")
     eta: float = option(0.1, "accept a step when actual / predicted merit reduction >= eta", "[OWN] trust region")
@@ -172,6 +172,20 @@ class DynamicQPlus(AbstractSolver):
             Bn = (V * np.clip(w, self.sigma_min, self.sigma_max)) @ V.T
         return Bn
 
+    def _restart_before_stop(self, restarted: bool, n_upd: int) -> bool:
+        """[OWN] Restart the quasi-Newton matrix once instead of stopping.
+
+        The BFGS matrix can keep a large curvature from far away in directions it has not
+        explored since (HS64: steps of 1e-6 at a non-stationary point).  Before the first stop,
+        the solver restarts from Dynamic-Q's spherical model and stops only if that model makes
+        no progress either.
+        """
+        return self.curvature == "bfgs" and not restarted and n_upd > 1
+
+    def _spherical_restart(self, s_last: float, n: int) -> np.ndarray:
+        """sigma I with sigma the spherical curvature of eq. (3.6) along the last step, safeguarded."""
+        return float(np.clip(s_last, self.sigma_min, self.sigma_max)) * np.eye(n)
+
     def minimize(self, oracle: Oracle) -> SolverOutput:
         lo, up = oracle.lower, oracle.upper
         x = np.clip(oracle.x0, lo, up)
@@ -242,13 +256,8 @@ class DynamicQPlus(AbstractSolver):
             dn = float(np.max(np.abs(d), initial=0.0))
             xs = 1.0 + float(np.max(np.abs(x), initial=0.0))
             if viol <= self.eps_c and (dn / xs < self.eps_x or pred / (1.0 + abs(ev["f"])) < self.eps_f):
-                if self.curvature == "bfgs" and not restarted and n_upd > 1:
-                    # [OWN] the quasi-Newton matrix can keep a large curvature from far away in
-                    # directions it has not explored since (HS64: steps of 1e-6 at a non-stationary
-                    # point).  Before stopping, restart once from Dynamic-Q's spherical model, eq.
-                    # (3.6) along the last step; stop only if that model finds no step either.
-                    sigma = np.clip(s_last, self.sigma_min, self.sigma_max) * np.eye(oracle.n)
-                    restarted = True
+                if self._restart_before_stop(restarted, n_upd):
+                    sigma, restarted = self._spherical_restart(s_last, oracle.n), True
                     continue
                 return SolverOutput(x, Status.CONVERGED, "feasible and step / predicted reduction below tolerance",
                                     nit=it, extra=self._extra(log, n_rej))
@@ -304,11 +313,15 @@ class DynamicQPlus(AbstractSolver):
                     n_upd += 1
                 if ratio >= 0.25 and dn >= 0.99 * rho:  # the box limited a useful step
                     rho *= 2.0
-                f_change = abs(evt["f"] - ev["f"]) / (1.0 + abs(ev["f"]))
+                f_change = abs(evt["raw"]["f"] - ev["raw"]["f"]) / (1.0 + abs(ev["raw"]["f"]))  # unscaled f
                 interior = dn < 0.99 * rho  # the full QP step, not cut by the move limit
                 x, ev = xt, evt
                 if (interior and ratio >= 0.75 and f_change < self.eps_df and viol <= self.eps_c
                         and _violation(evt["raw"]) <= self.eps_c):
+                    if self._restart_before_stop(restarted, n_upd):
+                        sigma, restarted = self._spherical_restart(s_last, oracle.n), True
+                        recent = [evt]
+                        continue
                     return SolverOutput(x, Status.CONVERGED, "feasible full step with normalized change of f "
                                         "< eps_df (as 3.11)", nit=it, extra=self._extra(log, n_rej))
                 recent = (recent + [evt])[-self.memory:]
