@@ -79,7 +79,8 @@ class DynamicQPlus(AbstractSolver):
     sigma_min: float = option(1e-8, "lower safeguard on the spherical curvature", "[OWN]")
     sigma_max: float = option(1e8, "upper safeguard on the spherical curvature", "[OWN]")
     curvature: str = option("bfgs", "'bfgs': Powell-damped BFGS matrix of the Lagrangian started from "
-                            "eq. (3.6)'s spherical curvature; 'diagonal': per-variable curvatures of the Lagrangian by the weak-secant "
+                            "eq. (3.6)'s spherical curvature; 'diagonal': per-variable curvatures of the "
+                            "Lagrangian by the weak-secant "
                             "update started from eq. (3.6); 'spherical': one curvature, eq. (3.6) on the Lagrangian",
                             "[OWN]; eq. (3.6) [THESIS]; Zhu-Nazareth-Wolkowicz diagonal weak secant")
     constraint_curvature: bool = option(False, "correct the linearized constraints by their spherical curvatures "
@@ -207,7 +208,8 @@ class DynamicQPlus(AbstractSolver):
         rho = float(self.rho) * scale_x
         n_upd = 0
         bq, cq = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)  # constraint curvatures (3.6)
-        sigma: Any = np.eye(oracle.n) if self.curvature == "bfgs" else np.ones(oracle.n)  # P[0]: no curvature information yet (the thesis' P[0] is linear)
+        # P[0]: no curvature information yet (the thesis' P[0] is linear)
+        sigma: Any = np.eye(oracle.n) if self.curvature == "bfgs" else np.ones(oracle.n)
         mu = float(self.mu0)
         log: list[dict[str, Any]] = []
         n_rej = 0
