@@ -51,6 +51,8 @@ def render_tables(suite: str | SuiteRef, out: str | os.PathLike[str] = "results"
         raise HarnessArgumentError(f"unknown format(s) {', '.join(bad)}; valid formats: {', '.join(FORMATS)}")
     name = _suite_name(suite)
     ref = suite if isinstance(suite, SuiteRef) else None
+    from ._reference import load_reference
+
     runs = load_results(name, out)
-    tables = build_tables(name, runs, ref)
+    tables = build_tables(name, runs, ref, reference=load_reference(out, name))
     return tables, write_tables(tables, pathlib.Path(out) / name, formats)

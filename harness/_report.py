@@ -74,7 +74,9 @@ def _suite_section(out: pathlib.Path, suite: str, report_dir: pathlib.Path, runs
     parts = [f'<h2 id="{html.escape(suite)}">{html.escape(suite)}</h2>',
              f"<p>{len(runs)} stored runs, {int(runs['success'].sum())} successful.</p>"]
     try:
-        for t in build_tables(suite, runs, ref):
+        from ._reference import load_reference
+
+        for t in build_tables(suite, runs, ref, reference=load_reference(out, suite)):
             parts.append(to_html(t))
     except NoTablePlugin as exc:
         parts.append(f"<p>{html.escape(str(exc))}</p>")

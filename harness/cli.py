@@ -121,6 +121,12 @@ def _parser() -> argparse.ArgumentParser:
     ex.add_argument("--out", default="results")
     ex.add_argument("--to", required=True, help="path of the .h5 archive to write")
 
+    rf = sub.add_parser("reference", help="compute and store what a suite's tables read from exact models "
+                        "(rpr2, rpr3; docs/harness.md)")
+    rf.add_argument("--suite", required=True)
+    rf.add_argument("--out", default="results")
+    rf.add_argument("--fresh", action="store_true", help="recompute every entry, not only the missing ones")
+
     b = sub.add_parser("baseline", help="save the deterministic counts of stored runs as a baseline")
     b.add_argument("--suite", required=True)
     b.add_argument("--out", default="results")
@@ -146,9 +152,17 @@ def _cmd_run(a: argparse.Namespace) -> int:
 def _tables_after_run(a: argparse.Namespace) -> None:
     """Regenerate the suite's tables from the store, so one command gives the thesis tables."""
     from ._api import render_tables
+    from ._reference import has_reference, update_reference
     from ._runner import resolve_suite
     from .tables._render import RENDERERS, NoTablePlugin
 
+    if a.suite and has_reference(a.suite):  # the exact-model analyses the tables read (never computed by them)
+        try:
+            from ._api import load_results
+
+            update_reference(a.out, a.suite, load_results(a.suite, a.out))
+        except Exception as exc:  # noqa: BLE001 - the runs are stored; say why the reference is not
+            print(f"reference not updated: {type(exc).__name__}: {exc}", file=sys.stderr)
     try:
         tables, paths = render_tables(resolve_suite(a.suite, a.suite_file), a.out)
     except NoTablePlugin:
@@ -249,6 +263,21 @@ def _cmd_export(a: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _cmd_reference(a: argparse.Namespace) -> int:
+    from ._api import NoResults, load_results
+    from ._reference import REFERENCE_MODULES, update_reference
+
+    if a.suite not in REFERENCE_MODULES:
+        raise HarnessArgumentError(f"suite {a.suite!r} has no stored reference; suites with one: "
+                                   f"{', '.join(REFERENCE_MODULES)}")
+    try:
+        runs = load_results(a.suite, a.out)
+    except NoResults:
+        runs = None  # the run-independent part (exact optima) is still useful
+    print(update_reference(a.out, a.suite, runs, fresh=a.fresh))
+    return 0
+
+
 def _cmd_baseline(a: argparse.Namespace) -> int:
     from ._compare import save_baseline
 
@@ -258,7 +287,7 @@ def _cmd_baseline(a: argparse.Namespace) -> int:
 
 COMMANDS = {"run": _cmd_run, "table": _cmd_table, "list": _cmd_list, "plot": _cmd_plot,
             "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline,
-            "export": _cmd_export, "repair": _cmd_repair}
+            "export": _cmd_export, "repair": _cmd_repair, "reference": _cmd_reference}
 
 
 def _terminate_as_interrupt() -> object:

@@ -344,7 +344,7 @@ class RPR3:
         With ``U`` the boundary of a prescribed workspace W_p this is the set of phi at
         which W_p is enclosed in ``W^C[phi]`` (eq. 5.14): an annulus's hole (radius
         ``l_min >= 1``) cannot fit inside the small W_p, so W_p is in the annulus iff its
-        boundary is (see `rpr3_suite.exact_optimum`).  MO synthesis (5.37) asks the
+        boundary is (see `rpr3_exact.exact_optimum`).  MO synthesis (5.37) asks the
         slices to lie in this set, D synthesis (5.39) the whole range ``[phi_min,
         phi_max]`` (eq. 5.22).
 

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import html
 import importlib
+import inspect
 import math
 import os
 import pathlib
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import pandas as pd
@@ -33,7 +34,7 @@ class NoTablePlugin(LookupError):
     """The suite has no table plug-in (yet)."""
 
 
-def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[[pd.DataFrame], list[Table]]:
+def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[..., list[Table]]:
     """The ``tables`` function of the suite's plug-in (or of its suite file)."""
     if ref is not None and ref.file:
         fn = getattr(suite_module(ref), "tables", None)
@@ -57,15 +58,20 @@ def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[[pd.DataFram
     return fn
 
 
-def build_tables(suite: str, runs: pd.DataFrame, ref: SuiteRef | None = None) -> list[Table]:
+def build_tables(suite: str, runs: pd.DataFrame, ref: SuiteRef | None = None,
+                 reference: Mapping[str, Any] | None = None) -> list[Table]:
     """The plug-in's tables from the runs made with the suite's own settings.
 
     Runs with command-line options (``sqsd[rho=0.1]``: column ``overrides``) are left out:
-    the tables reproduce the thesis's settings, one run per (case, solver).
+    the tables reproduce the thesis's settings, one run per (case, solver).  A plug-in
+    ``tables(runs, reference)`` also gets the suite's stored reference (`harness._reference`;
+    {} when none is stored): tables never run optimizations themselves.
     """
     if "overrides" in runs.columns:
         runs = runs[runs["overrides"].fillna("") == ""].reset_index(drop=True)
-    tables = list(plugin_for(suite, ref)(runs))
+    plugin = plugin_for(suite, ref)
+    takes_reference = len(inspect.signature(plugin).parameters) >= 2
+    tables = list(plugin(runs, dict(reference or {})) if takes_reference else plugin(runs))
     for t in tables:
         if not isinstance(t, Table):
             raise TypeError(f"table plug-in of {suite} returned {type(t).__name__}, expected harness.tables.Table")

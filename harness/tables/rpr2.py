@@ -146,13 +146,12 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
     )
 
 
-def _polish(x) -> dict:
-    from manipulators.synthesis.rpr2_suite import exact_polish
+def _polish(x, reference: dict) -> dict:
+    """`rpr2_exact.exact_polish` of x, from the stored reference ({} if not stored)."""
+    from manipulators.synthesis.rpr2_exact import design_key
 
-    try:
-        return exact_polish(np.asarray(x, dtype=float))
-    except Exception:  # noqa: BLE001  (a broken row must not break the table)
-        return {}
+    pol = (reference.get("polish") or {}).get(design_key(x)) or {}
+    return {} if "error" in pol else pol
 
 
 def _span(vals, fmt=".2f") -> str:
@@ -224,12 +223,12 @@ def _compromises(row) -> str:
         return ""
 
 
-def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
-    from manipulators.synthesis.rpr2_suite import exact_optimum
-
+def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame, reference: dict) -> Table:
     rows: list[dict[str, Any]] = []
     flags: list[bool] = []
-    opt = exact_optimum("e")  # the exact model's minima: no chord method, analytic area (4.14)
+    # the exact model's minima (no chord method, analytic area, (4.14)): stored by `harness reference`
+    opt = reference.get("exact_optimum") or {"minima": [], "starts": 0}
+    opt["minima"] = [(float(f_m), np.asarray(d_m, dtype=float), int(c)) for f_m, d_m, c in opt["minima"]]
     for i, (f_m, d_m, count) in enumerate(opt["minima"]):
         ev = _evaluate("e", d_m)
         rows.append({"start": "all", "source": "exact model",
@@ -243,7 +242,7 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
     pols: dict[tuple[str, str], dict] = {}  # (source, start) -> exact_polish of the Dynamic-Q d*
 
     def polished(x, key=None) -> dict:
-        pol = _polish(x)
+        pol = _polish(x, reference)
         if key is not None:
             pols[key] = pol
         ok = pol.get("viol", 1.0) < 1e-6
@@ -313,7 +312,7 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
             "f* = dW_c and h* = dW_p by the triangle scheme; 'exact' columns from exact geometry.",
             f"Flagged: Dynamic-Q f* not within {E_REL:.0%} of the thesis or exact dW_p > 0.01.",
             "'(exact-model optimum)', '(exact-model local min)': (4.14) solved in exact, smooth form "
-            "(rpr2_suite.exact_optimum): min area(W_c) - area(W_p), area(W_c) in closed form "
+            "(rpr2_exact.exact_optimum, stored in reference.json): min area(W_c) - area(W_p), area(W_c) in closed form "
             "(RPR2.exact_area: lens areas by inclusion-exclusion, halved), subject to every leg length "
             "on 512 points of W_p's boundary within [l_min, 1.5 l_min] and W_p above the base line - "
             "exactly W_p inside W_c, so h = 0. SciPy SLSQP with analytic derivatives from SP1-SP4, the "
@@ -321,11 +320,14 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
             f"these {len(opt['minima'])} designs (status: how many starts end there; mirror images x_A <-> "
             "-x_B counted together); a multistart, not a global proof. f*, h* are our triangle scheme "
             "(chord 0.1) at that d.",
-            "'exact local min': where SLSQP on the exact problem ends from the row's d* (rpr2_suite."
-            "exact_polish); 'box drop': how far the exact objective still falls within +-0.05 (each "
+            "'exact local min': where SLSQP on the exact problem ends from the row's d* (rpr2_exact."
+            "exact_polish, stored in reference.json); 'box drop': how far the exact objective still falls "
+            "within +-0.05 (each "
             "component) of the feasible design nearest to d* - about 0 if d* is at a local minimum of "
             "the exact problem, > 0 if the exact landscape still descends there.",
-            _e_reading(opt["minima"], pols),
+            _e_reading(opt["minima"], pols) if opt["minima"] else
+            "No stored exact-model reference: the exact columns are empty. Run `python -m harness reference "
+            "--suite rpr2` (harness run does it too).",
             "Dynamic-Q stops on (3.10) as printed (at infeasible iterates too, as the thesis's h* > 0 show). "
             + _e_dq_summary(runs, thesis),
             "'compromise P[i]': Dynamic-Q subproblems with no point meeting their approximate constraints "
@@ -388,11 +390,15 @@ def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
                         f"Flagged: Dynamic-Q f* more than {P_TOL} below the thesis's, or P not enclosed."])
 
 
-def tables(runs: pd.DataFrame) -> list[Table]:
-    """Tables 4.3-4.6 (O synthesis per start), 4.7 (E synthesis), 4.9 (P synthesis)."""
+def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
+    """Tables 4.3-4.6 (O synthesis per start), 4.7 (E synthesis), 4.9 (P synthesis).
+
+    ``reference``: the stored exact-model analyses (`manipulators.synthesis.rpr2_exact.reference`,
+    ``results/rpr2/reference.json``); without it Table 4.7's exact columns are empty.
+    """
     runs = _decoded(runs)
     o = thesis_table("table_4_3_to_4_6_O_synthesis")
     out = [_o_table(runs, sp, o) for sp in O_TABLES]
-    out.append(_e_table(runs, thesis_table("table_4_7_E_synthesis")))
+    out.append(_e_table(runs, thesis_table("table_4_7_E_synthesis"), dict(reference or {})))
     out.append(_p_table(runs, thesis_table("table_4_9_P_synthesis")))
     return out

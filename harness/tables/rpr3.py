@@ -15,7 +15,6 @@ orientations of d* (`rpr3_suite.enclosing_window`) missing the ones the synthesi
 
 from __future__ import annotations
 
-import functools
 import math
 import time
 
@@ -131,11 +130,20 @@ def _thesis_windows_note() -> str:
     )
 
 
-def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
-    """Table 5.3 / 5.4 / 5.5: ours beside the thesis's, with the exact enclosure check."""
-    from manipulators.synthesis.rpr3_suite import SETTINGS, evaluate, exact_optimum, synthesis_problem
+def _stored_optimum(optima: dict, kind: str, pname: str) -> dict:
+    """The stored exact-model optimum of a case, d as an array (None when not stored)."""
+    opt = dict(optima.get(f"{kind}/{pname}") or {})
+    if not opt:
+        return {"d": None, "kinv": float("nan"), "enclosed": False, "ratio": float("nan")}
+    opt["d"] = None if opt.get("d") is None else np.asarray(opt["d"], dtype=float)
+    return opt
 
-    from .._memo import memo
+
+def synthesis_table(runs: pd.DataFrame, kind: str, optima: dict | None = None) -> Table:
+    """Table 5.3 / 5.4 / 5.5: ours beside the thesis's, with the exact enclosure check.
+    ``optima``: the stored exact-model optima by ``"kind/P"`` (rpr3_exact.reference)."""
+    from manipulators.synthesis.rpr3_exact import N_STARTS
+    from manipulators.synthesis.rpr3_suite import SETTINGS, evaluate, synthesis_problem
 
     num, title = KINDS[kind]
     rows, flags = [], []
@@ -147,8 +155,7 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
         sub = runs[runs["problem"] == pid] if len(runs) else runs
         best_ok = _best_enclosed(kind, pname, sub)
         # what the exact model allows (independent of the chord formulation); computed once per code version
-        opt = memo("rpr3-exact-optimum", ("manipulators.synthesis.rpr3_suite",), (kind, pname, n_starts),
-                   functools.partial(exact_optimum, kind, pname, n_starts=n_starts))
+        opt = _stored_optimum(optima or {}, kind, pname)
         win, miss = _window(kind, opt["d"], pname)
         rows.append({
             "P": pname, "solver": "(exact-model optimum)", "status": "", "N^fg": None, "N^f": None,
@@ -233,10 +240,11 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
         f"{F_TOL}; 'f(d0) (thesis)' when ours differs by more than {F0_TOL}; 'enclosed' when the published d* "
         "does not enclose W_p in our model (then also its 'd* (thesis)' and 'g* (thesis)').",
         "'(exact-model optimum)': the best design of our exact model (leg limits on W_p's boundary, no chord "
-        "method; rpr3_suite.exact_optimum): a global stage - SciPy differential evolution over the box "
+        "method; rpr3_exact.exact_optimum, stored in reference.json): a global stage - SciPy differential "
+        "evolution over the box "
         "x_C in [-3, 1], y_C in [-1, 1.2], x_D, x_E in [-1, 3.5], r in [0.05, 2] (holds every design of these "
         "tables; seed 0, 75 members, 150 generations) polished by SLSQP - and multistart SLSQP from the start, the "
-        f"thesis's d* and {n_starts} seeded perturbations; the best of all.  A reference for what any solver can "
+        f"thesis's d* and {N_STARTS} seeded perturbations; the best of all.  A reference for what any solver can "
         f"reach, not a proof of global optimality; flagged when below the thesis's f* - {F_TOL}, i.e. the "
         "thesis's f* is out of reach in our model.",
         "phi window (deg): the exact set of platform orientations at which W_p is enclosed in W^C[phi] for the "
@@ -256,9 +264,12 @@ def synthesis_table(runs: pd.DataFrame, kind: str, n_starts: int = 40) -> Table:
     return Table(f"table_{num.replace('.', '_')}", f"Table {num}: {title}", frame, flags=fl, notes=notes)
 
 
-def tables(runs: pd.DataFrame) -> list[Table]:
+def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
+    """Table 5.2 and Tables 5.3-5.5; ``reference``: the stored exact-model optima
+    (`manipulators.synthesis.rpr3_exact.reference`, ``results/rpr3/reference.json``)."""
     runs = runs[runs["suite"] == "rpr3"] if "suite" in runs else runs
+    optima = dict((reference or {}).get("exact_optimum") or {})
     out = [dextrous_table()]
     for kind in KINDS:
-        out.append(synthesis_table(runs, kind))
+        out.append(synthesis_table(runs, kind, optima))
     return out

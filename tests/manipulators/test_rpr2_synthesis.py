@@ -50,7 +50,7 @@ def test_p3_synthesis_short_cobyla_run_improves_and_encloses():
 def test_exact_e_problem_derivatives_against_finite_differences():
     from scipy.optimize import approx_fprime
 
-    from manipulators.synthesis.rpr2_suite import exact_e_problem
+    from manipulators.synthesis.rpr2_exact import exact_e_problem
 
     f, cons = exact_e_problem(k=64)
     d = np.array([-4.2, -2.4, 3.9, 5.5, 5.4])
@@ -60,7 +60,7 @@ def test_exact_e_problem_derivatives_against_finite_differences():
 
 
 def test_exact_e_value_is_dwc_of_the_shapely_geometry_when_enclosed():
-    from manipulators.synthesis.rpr2_suite import exact_e_problem
+    from manipulators.synthesis.rpr2_exact import exact_e_problem
 
     f, cons = exact_e_problem()
     d = np.array([-4.8, -2.4, 4.8, 5.8, 5.8])  # encloses P1 with margin
@@ -70,7 +70,7 @@ def test_exact_e_value_is_dwc_of_the_shapely_geometry_when_enclosed():
 
 
 def test_exact_e_minima_and_polish_from_a_narrow_base_design():
-    from manipulators.synthesis.rpr2_suite import exact_optimum, exact_polish
+    from manipulators.synthesis.rpr2_exact import exact_optimum, exact_polish
 
     opt = exact_optimum("e", n_starts=8)
     # two local minima: base line through W_p's lowest point (y = 1.82), and below W_p
