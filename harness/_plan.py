@@ -15,7 +15,7 @@ import json
 from typing import Any
 
 from problems import Case, Suite
-from problems._catalog import SUITES
+from problems._catalog import REGISTRY as SUITE_REGISTRY
 from solvers import get_solver_class, make_solver, parse_spec
 
 from ._codeversion import code_version
@@ -128,7 +128,7 @@ def plan_runs(ref: SuiteRef, suite: Suite, solver_specs: list[str], problems: li
             except (ValueError, TypeError) as exc:
                 raise HarnessArgumentError(f"invalid options in {spec_str!r}: {exc}") from None
     cases = select_cases(suite, problems)
-    suite_module = None if ref.file else SUITES.get(ref.name)
+    suite_module = None if ref.file else SUITE_REGISTRY.module_of(ref.name)
     files = (ref.file,) if ref.file else ()
     cv = {name: _solver_code(name, classes.get(name), suite_module, files) for name, _ in parsed}
     specs = []

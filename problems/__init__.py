@@ -6,7 +6,9 @@
 
 from ._catalog import UnknownSuite as UnknownSuite
 from ._catalog import get_suite as get_suite
+from ._catalog import register_suite as register_suite
 from ._catalog import suite_names as suite_names
+from ._catalog import unregister_suite as unregister_suite
 from ._finite_differences import fd_gradient as fd_gradient
 from ._finite_differences import fd_jacobian as fd_jacobian
 from ._oracle import BudgetExhausted as BudgetExhausted

@@ -1,38 +1,61 @@
-"""Suite catalogue: suite name -> module defining ``SUITE`` (imported on demand)."""
+"""The suite registry: suite name -> `Suite`, built-in suites imported on demand.
+
+Built-in suites are ``"module:SUITE"`` entries of the shared registry type
+(`problems._registry.Registry`, the solvers' too), so one broken suite module cannot
+break another and listing names imports none.  Users add theirs with `register_suite`;
+a name already taken is refused.
+"""
 
 from __future__ import annotations
 
-import importlib
+from typing import Any
 
+from ._registry import Registry, UnknownName
 from ._suite import Suite
 
-__all__ = ["SUITES", "get_suite", "suite_names", "UnknownSuite"]
+__all__ = ["REGISTRY", "get_suite", "suite_names", "register_suite", "unregister_suite", "UnknownSuite"]
 
-SUITES: dict[str, str] = {
-    "appendix-a": "problems.appendix_a",
-    "hs": "problems.hs",
-    "rpr2": "manipulators.synthesis.rpr2_suite",
-    "rpr2-spread": "manipulators.synthesis.rpr2_spread_suite",
-    "rpr3": "manipulators.synthesis.rpr3_suite",
-    "tdpm": "manipulators.synthesis.tdpm_suite",
-    "hs-all": "problems.s2mpj.hs_all_suite",
-    "cutest": "problems.s2mpj.cutest_suite",
+BUILTIN: dict[str, str] = {
+    "appendix-a": "problems.appendix_a:SUITE",
+    "hs": "problems.hs:SUITE",
+    "rpr2": "manipulators.synthesis.rpr2_suite:SUITE",
+    "rpr2-spread": "manipulators.synthesis.rpr2_spread_suite:SUITE",
+    "rpr3": "manipulators.synthesis.rpr3_suite:SUITE",
+    "tdpm": "manipulators.synthesis.tdpm_suite:SUITE",
+    "hs-all": "problems.s2mpj.hs_all_suite:SUITE",
+    "cutest": "problems.s2mpj.cutest_suite:SUITE",
 }
 
 
-class UnknownSuite(KeyError):
-    def __str__(self) -> str:
-        return str(self.args[0])
+class UnknownSuite(UnknownName):
+    """An unknown suite name; the message lists the valid ones."""
+
+
+def _check(name: str, suite: Any) -> None:
+    if not isinstance(suite, Suite):
+        raise TypeError(f"suite {name!r}: expected a problems.Suite, got {type(suite).__name__}")
+    if suite.name != name:
+        raise ValueError(f"suite object named {suite.name!r} registered as {name!r}")
+
+
+#: the suite registry
+REGISTRY: Registry[Suite] = Registry("suite", BUILTIN, _check, UnknownSuite)
 
 
 def suite_names() -> list[str]:
-    return list(SUITES)
+    return REGISTRY.names()
 
 
 def get_suite(name: str) -> Suite:
-    if name not in SUITES:
-        raise UnknownSuite(f"unknown suite {name!r}; valid suites: {', '.join(SUITES)}")
-    suite = importlib.import_module(SUITES[name]).SUITE
-    if suite.name != name:
-        raise RuntimeError(f"module {SUITES[name]} defines suite {suite.name!r}, expected {name!r}")
-    return suite
+    return REGISTRY.get(name)
+
+
+def register_suite(suite: Suite) -> Suite:
+    """Make ``suite`` available by its name to `get_suite` and ``python -m harness --suite``
+    (in the process that registers it: a harness run imports the registering module with
+    ``--solver-module``).  A name already taken raises ValueError."""
+    return REGISTRY.register(suite.name, suite)
+
+
+def unregister_suite(name: str) -> None:
+    REGISTRY.unregister(name)

@@ -69,6 +69,10 @@ class Suite:
         libraries: a harness worker rebuilds only the case it runs).
     selector : optional ``expression -> cases``: the cases a selection picks
         (``harness run --select``; see `Suite.select`).
+    tables : module of the suite's table plug-in, ``tables(runs[, reference]) -> list[Table]``
+        (e.g. ``"harness.tables.rpr2"``); empty: the suite has no tables.
+    figures : module of its thesis-figure plug-in, ``figures(runs, outdir) -> list[Path]``
+        (e.g. ``"harness.figures.rpr2"``); empty: none.
     """
 
     name: str
@@ -77,6 +81,8 @@ class Suite:
     solvers: tuple[str, ...]
     build_case: Callable[[str], Case] | None = None
     selector: Callable[[str], Sequence[Case]] | None = None
+    tables: str = ""
+    figures: str = ""
 
     def select(self, expression: str) -> Suite:
         """The same suite restricted to the cases ``expression`` selects."""

@@ -8,58 +8,50 @@ a name collision is an error (Nevergrad's registry rule).
 from __future__ import annotations
 
 import ast
-import importlib
 import re
 from typing import Any
+
+from problems._registry import Registry, UnknownName
 
 from ._base import AbstractSolver
 from ._catalog import BUILTIN
 
 __all__ = ["register", "unregister", "get_solver_class", "solver_names", "make_solver", "parse_spec", "UnknownSolver"]
 
-_USER: dict[str, type[AbstractSolver]] = {}
-_LOADED: dict[str, type[AbstractSolver]] = {}
+class UnknownSolver(UnknownName):
+    """An unknown solver id; the message lists the valid ones."""
 
 
-class UnknownSolver(KeyError):
-    def __str__(self) -> str:  # KeyError quotes its message; we want plain text
-        return str(self.args[0])
+def _check(name: str, cls: Any) -> None:
+    if not (isinstance(cls, type) and issubclass(cls, AbstractSolver)):
+        raise TypeError("register() needs a subclass of solvers.AbstractSolver")
+    if getattr(cls, "name", None) != name:
+        raise ValueError(f"solver class {cls.__name__} has name {getattr(cls, 'name', None)!r}, registered as {name!r}")
+
+
+#: the solver registry (`problems._registry.Registry`, shared with the suites')
+REGISTRY: Registry[type[AbstractSolver]] = Registry("solver", BUILTIN, _check, UnknownSolver)
 
 
 def solver_names() -> list[str]:
     """All registered solver ids, built-in first."""
-    return list(BUILTIN) + [k for k in _USER if k not in BUILTIN]
+    return REGISTRY.names()
 
 
 def register(cls: type[AbstractSolver]) -> type[AbstractSolver]:
-    """Register a solver class (usable as a decorator). Collisions raise ValueError."""
+    """Register a solver class under its ``name`` (usable as a decorator). Collisions raise ValueError."""
     if not (isinstance(cls, type) and issubclass(cls, AbstractSolver)):
         raise TypeError("register() needs a subclass of solvers.AbstractSolver")
-    name = getattr(cls, "name", None)
-    if not isinstance(name, str) or not re.fullmatch(r"[a-z0-9][a-z0-9\-]*", name):
-        raise ValueError(f"solver name must be kebab-case, got {name!r}")
-    if name in BUILTIN or name in _USER:
-        raise ValueError(f"a solver named {name!r} is already registered")
-    _USER[name] = cls
-    return cls
+    return REGISTRY.register(getattr(cls, "name", None), cls)  # type: ignore[arg-type]  # checked there
 
 
 def unregister(name: str) -> None:
     """Remove a user-registered solver (built-ins cannot be removed)."""
-    _USER.pop(name, None)
+    REGISTRY.unregister(name)
 
 
 def get_solver_class(name: str) -> type[AbstractSolver]:
-    if name in _USER:
-        return _USER[name]
-    if name in _LOADED:
-        return _LOADED[name]
-    if name not in BUILTIN:
-        raise UnknownSolver(f"unknown solver {name!r}; valid solvers: {', '.join(solver_names())}")
-    module, _, clsname = BUILTIN[name].partition(":")
-    cls = getattr(importlib.import_module(module), clsname)
-    _LOADED[name] = cls
-    return cls
+    return REGISTRY.get(name)
 
 
 def parse_spec(spec: str) -> tuple[str, dict[str, Any]]:

@@ -1,4 +1,4 @@
-"""Thesis figures: per-suite plug-ins ``harness.figures.<suite with - replaced by _>``.
+"""Thesis figures: per-suite plug-ins, declared by the suite (``Suite(..., figures="harness.figures.rpr2")``).
 
 A plug-in defines ``figures(runs: pandas.DataFrame, outdir: pathlib.Path) -> list[Path]``
 drawing the thesis's figures for that suite from stored runs (no solver re-runs).
@@ -20,14 +20,16 @@ class NoFigurePlugin(LookupError):
 
 
 def thesis_figures(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
-    modname = f"harness.figures.{suite.replace('-', '_')}"
+    from problems import UnknownSuite, get_suite
+
     try:
-        module = importlib.import_module(modname)
-    except ModuleNotFoundError as exc:
-        if exc.name != modname:
-            raise
-        raise NoFigurePlugin(f"suite {suite!r} has no thesis-figure plug-in (expected {modname} with "
-                             "figures(runs, outdir) -> list[Path])") from None
+        modname = get_suite(suite).figures
+    except UnknownSuite:
+        modname = ""
+    if not modname:
+        raise NoFigurePlugin(f"suite {suite!r} has no thesis-figure plug-in (Suite(..., figures='module') with "
+                             "figures(runs, outdir) -> list[Path])")
+    module = importlib.import_module(modname)
     import matplotlib
 
     matplotlib.use("Agg")

@@ -1,8 +1,8 @@
 """Render a suite's tables: find its plug-in, build the tables, write md/csv/LaTeX/HTML.
 
-A suite's plug-in is ``harness.tables.<suite with - replaced by _>`` exposing
-``tables(runs) -> list[Table]`` (see `harness.tables._base`); a user suite file may
-define the same ``tables`` function.  Cells the plug-in flags (``Table.flags``) differ
+A suite declares its plug-in: ``Suite(..., tables="harness.tables.rpr2")``, a module
+exposing ``tables(runs[, reference]) -> list[Table]`` (see `harness.tables._base`); a user
+suite file may define the same ``tables`` function.  Cells the plug-in flags (``Table.flags``) differ
 from the thesis beyond the plug-in's stated tolerance and are marked with ``MARK``.
 """
 
@@ -43,15 +43,16 @@ def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[..., list[Ta
         raise NoTablePlugin(f"suite file {ref.file} defines no function tables(runs) -> list[Table]; add one to "
                             "render tables of your suite (docs/user_problems.md). Profiles and the report work "
                             "without it: python -m harness plot --kind profile")
-    modname = f"harness.tables.{suite.replace('-', '_')}"
+    from problems import UnknownSuite, get_suite
+
     try:
-        module = importlib.import_module(modname)
-    except ModuleNotFoundError as exc:
-        if exc.name != modname:  # the plug-in exists but one of its imports is missing
-            raise
-        raise NoTablePlugin(
-            f"suite {suite!r} has no table plug-in yet (expected module {modname}, file "
-            f"harness/tables/{suite.replace('-', '_')}.py, with tables(runs) -> list[Table])") from None
+        modname = (ref.load() if ref is not None else get_suite(suite)).tables
+    except UnknownSuite:
+        raise NoTablePlugin(f"suite {suite!r} is not registered: no table plug-in to find") from None
+    if not modname:
+        raise NoTablePlugin(f"suite {suite!r} declares no table plug-in (Suite(..., tables='module') with "
+                            "tables(runs) -> list[Table])")
+    module = importlib.import_module(modname)
     fn = getattr(module, "tables", None)
     if not callable(fn):
         raise NoTablePlugin(f"{modname} defines no function tables(runs)")

@@ -72,4 +72,6 @@ SUITE = Suite(
                  "of each: how much the thesis's cells depend on the start (Tables 4.3-4.7)"),
     build=_build,
     solvers=("dynamic-q",),
+    tables="harness.tables.rpr2_spread",
+    figures="harness.figures.rpr2_spread",
 )

@@ -246,4 +246,6 @@ SUITE = Suite(
     description="2-RPR dimensional synthesis (thesis Ch. 4): O (Tables 4.3-4.6), E (4.7), P (4.9)",
     build=_build,
     solvers=SOLVERS,
+    tables="harness.tables.rpr2",
+    figures="harness.figures.rpr2",
 )

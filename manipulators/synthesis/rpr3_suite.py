@@ -402,4 +402,6 @@ SUITE = Suite(
     description="3-RPR dimensional synthesis (thesis Ch. 5): SO (Table 5.3), MO (5.4), D (5.5)",
     build=_build,
     solvers=SOLVERS,
+    tables="harness.tables.rpr3",
+    figures="harness.figures.rpr3",
 )

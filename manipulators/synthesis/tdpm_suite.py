@@ -152,4 +152,6 @@ SUITE = Suite(
                 "3 and 4 cables, loads L1-L3 (Tables 6.5-6.10), five random starts each",
     build=_build,
     solvers=SOLVERS,
+    tables="harness.tables.tdpm",
+    figures="harness.figures.tdpm",
 )

@@ -80,4 +80,5 @@ SUITE = Suite(
     description="Thesis Appendix A: 14 unconstrained test problems (Tables 2.1-2.2: SQSD vs SD, FR, PR)",
     build=build_cases,
     solvers=SOLVERS,
+    tables="harness.tables.appendix_a",
 )

@@ -91,4 +91,5 @@ SUITE = Suite(
     description="Hock-Schittkowski problems of thesis Table 3.1 (Dynamic-Q vs SQP), from the HS starts",
     build=_cases,
     solvers=SOLVERS,
+    tables="harness.tables.hs",
 )

@@ -34,4 +34,5 @@ SUITE = Suite(
     build=lambda: _selector(DEFAULT_SELECTION), solvers=SOLVERS,
     build_case=lambda case_id: case_for(instance_of(case_id), hs_reference),
     selector=_selector,
+    tables="harness.tables.cutest",
 )

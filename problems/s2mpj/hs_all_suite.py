@@ -66,4 +66,5 @@ SUITE = Suite(
     build=_build, solvers=SOLVERS,
     build_case=lambda case_id: case_for(instance_of(case_id), hs_reference),
     selector=_selector,
+    tables="harness.tables.hs_all",
 )
