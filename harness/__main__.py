@@ -10,6 +10,6 @@ from ._blas import pin_blas
 
 pin_blas()
 
-from .cli import main  # noqa: E402
+from .cli import main  # noqa: E402 - after pin_blas(), before NumPy loads
 
 sys.exit(main())

@@ -56,14 +56,14 @@ def _new_slot(env: dict[str, str | None]) -> Slot:
     apply_numeric_env(env)
     ctx = mp.get_context("spawn")  # a fresh interpreter: OpenBLAS loads under ``env``
     proc = mp.current_process()
-    daemon = proc._config.get("daemon")  # type: ignore[attr-defined]
+    daemon = proc._config.get("daemon")  # type: ignore[attr-defined]  # private, no stub
     # Dask's worker processes are daemonic and multiprocessing refuses children of daemons;
     # our child ends by itself when its pipe closes, so the rule's purpose is kept.
-    proc._config["daemon"] = False  # type: ignore[attr-defined]
+    proc._config["daemon"] = False  # type: ignore[attr-defined]  # private, no stub
     try:
         return Slot(ctx, die_with_parent=False)  # the child ends when its pipe closes
     finally:
-        proc._config["daemon"] = daemon  # type: ignore[attr-defined]
+        proc._config["daemon"] = daemon  # type: ignore[attr-defined]  # private, no stub
 
 
 def run_isolated(spec: RunSpec, env: dict[str, str | None] | None = None) -> dict[str, Any]:

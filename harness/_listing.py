@@ -34,7 +34,7 @@ def list_suites() -> Iterator[str]:
         try:
             s = SuiteRef(name).load()
             yield f"{name:12s} {len(s.cases()):4d} cases  solvers: {','.join(s.solvers)}  {s.description}"
-        except Exception as exc:  # noqa: BLE001
+        except Exception as exc:  # noqa: BLE001 - one broken suite must not hide the others
             yield f"{name:12s} [unavailable: {type(exc).__name__}: {exc}]"
 
 

@@ -207,10 +207,10 @@ class LocalPool:
             if not ready and heartbeat is not None and time.perf_counter() < nearest:
                 yield None
             for conn in ready:
-                slot = busy[conn]  # type: ignore[index]
+                slot = busy[conn]  # type: ignore[index]  # wait() returns the keys it was given
                 row = slot.receive()  # a dead worker is replaced at the next submit
                 if row is not None:
-                    del busy[conn]  # type: ignore[arg-type]
+                    del busy[conn]  # type: ignore[arg-type]  # as above
                     yield row
             now = time.perf_counter()
             for conn, slot in list(busy.items()):

@@ -335,4 +335,4 @@ def main(argv: Sequence[str] | None = None) -> int:
         if previous is not None:
             import signal
 
-            signal.signal(signal.SIGTERM, previous)  # type: ignore[arg-type]
+            signal.signal(signal.SIGTERM, previous)  # type: ignore[arg-type]  # the handler signal() returned

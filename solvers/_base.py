@@ -132,7 +132,7 @@ class AbstractSolver(abc.ABC):
 
     def __post_init__(self) -> None:
         """Check every option once: its type (from the annotation), its `Check`, then `check_together`."""
-        for f in dataclasses.fields(self):  # type: ignore[arg-type]
+        for f in dataclasses.fields(self):  # type: ignore[arg-type]  # concrete solvers are dataclasses
             value = getattr(self, f.name)
             ok, kind = _type_ok(f.type, value)
             check: Check | None = f.metadata.get("check")
@@ -148,7 +148,7 @@ class AbstractSolver(abc.ABC):
     @classmethod
     def check_option_names(cls, names: Any) -> None:
         """ValueError naming the solver, the unknown option names and the valid ones."""
-        valid = [f.name for f in dataclasses.fields(cls)]  # type: ignore[arg-type]
+        valid = [f.name for f in dataclasses.fields(cls)]  # type: ignore[arg-type]  # a dataclass subclass
         unknown = sorted(set(names) - set(valid))
         if unknown:
             raise ValueError(f"unknown option(s) {', '.join(unknown)} for solver {cls.name!r}; valid options: "
@@ -169,9 +169,9 @@ class AbstractSolver(abc.ABC):
     def options(cls) -> list[dict[str, Any]]:
         """Option table generated from the dataclass fields (name, default, doc, source)."""
         rows = []
-        for f in dataclasses.fields(cls):  # type: ignore[arg-type]
+        for f in dataclasses.fields(cls):  # type: ignore[arg-type]  # a dataclass subclass
             default = f.default if f.default is not dataclasses.MISSING else (
-                f.default_factory() if f.default_factory is not dataclasses.MISSING else None  # type: ignore[misc]
+                f.default_factory() if f.default_factory is not dataclasses.MISSING else None  # type: ignore[misc]  # stub: Field.default_factory
             )
             check = f.metadata.get("check")
             rows.append({"name": f.name, "default": default, "doc": f.metadata.get("doc", ""),
@@ -181,7 +181,7 @@ class AbstractSolver(abc.ABC):
     def settings(self) -> dict[str, Any]:
         """The option values of this instance, JSON-friendly (nested solvers as dicts)."""
         out: dict[str, Any] = {}
-        for f in dataclasses.fields(self):  # type: ignore[arg-type]
+        for f in dataclasses.fields(self):  # type: ignore[arg-type]  # concrete solvers are dataclasses
             v = getattr(self, f.name)
             if isinstance(v, AbstractSolver):
                 v = {"solver": v.name, **v.settings()}

@@ -83,7 +83,7 @@ def make_solver(spec: str | AbstractSolver, **options: Any) -> AbstractSolver:
             import dataclasses
 
             type(spec).check_option_names(options)
-            return dataclasses.replace(spec, **options)  # type: ignore[type-var]
+            return dataclasses.replace(spec, **options)  # type: ignore[type-var]  # a dataclass instance
         return spec
     name, spec_opts = parse_spec(spec)
     cls = get_solver_class(name)

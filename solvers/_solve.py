@@ -81,7 +81,7 @@ def _finish(problem: Problem, inst: AbstractSolver, oracle: Oracle, out: SolverO
     try:
         f = float(problem.objective(x)) if x.size == problem.n else float("nan")
         viol = problem.max_violation(x) if x.size == problem.n else float("nan")
-    except Exception as exc:  # noqa: BLE001
+    except Exception as exc:  # noqa: BLE001 - a report evaluation must not lose the run
         f, viol = float("nan"), float("nan")
         message = f"{message}; evaluating the final point failed: {exc}"
     if status is not Status.ERROR and not (np.isfinite(f) and np.all(np.isfinite(x)) and np.isfinite(viol)):

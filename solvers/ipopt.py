@@ -59,7 +59,7 @@ class _PyFunction(ca.Callback):
         sp_x, sp_y = self._sp_in[0], self._sp_out[0]
         jac = self._jac
         self._jac_fun = _PyFunction(name, [sp_x, sp_y], [ca.Sparsity.dense(sp_y.numel(), sp_x.numel())],
-                                    lambda x, y: [jac(x.ravel())], self._errors)  # type: ignore[misc]
+                                    lambda x, y: [jac(x.ravel())], self._errors)  # type: ignore[misc]  # CasADi stub
         return self._jac_fun
 
     def get_n_in(self) -> int:
@@ -123,7 +123,7 @@ def _hessian_function(problem: Problem) -> ca.Function:
         return cached
     n, m = problem.n, problem.n_ineq + problem.n_eq
     x = ca.SX.sym("x", n)
-    sym = problem.symbolic(x)  # type: ignore[misc]
+    sym = problem.symbolic(x)  # type: ignore[misc]  # checked non-None by the caller
     parts = [ca.SX(v) for k in ("ineq", "eq") if (v := sym.get(k)) is not None and ca.SX(v).numel() > 0]
     c = ca.vertcat(*parts) if parts else ca.SX(0, 1)
     if c.numel() != m:

@@ -17,5 +17,5 @@ def instance_of(case_id: str) -> str:
 def case_for(instance: str, reference: Callable[[str], tuple[float | None, object]] | None = None) -> Case:
     """The case of ``instance``; ``reference(instance) -> (f_ref, x_ref)`` gives known optima."""
     f_ref, x_ref = reference(instance) if reference is not None else (None, None)
-    problem = s2mpj_problem(instance, f_ref=f_ref, x_ref=x_ref)  # type: ignore[arg-type]
+    problem = s2mpj_problem(instance, f_ref=f_ref, x_ref=x_ref)  # type: ignore[arg-type]  # x_ref: array or None
     return Case(problem=problem, problem_id=instance, meta={"type": problem.meta["type"]})
