@@ -23,7 +23,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-from ._plan import RunSpec
+from ._plan import HarnessArgumentError, RunSpec
 from ._pool import Slot
 from ._worker import spec_row
 
@@ -88,7 +88,13 @@ def dask_map(specs: list[RunSpec], scheduler: str | None,
 
     ``info`` (if given) receives ``workers``: the numerical environment each worker applied.
     """
-    from distributed import Client, LocalCluster, as_completed
+    from problems._registry import MissingExtra, require
+
+    try:
+        distributed = require("distributed", "--executor dask")
+    except MissingExtra as exc:
+        raise HarnessArgumentError(str(exc)) from None
+    Client, LocalCluster, as_completed = distributed.Client, distributed.LocalCluster, distributed.as_completed
 
     cluster = None
     if scheduler and scheduler.startswith("local"):

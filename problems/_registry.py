@@ -13,7 +13,34 @@ import re
 from collections.abc import Callable, Mapping
 from typing import Any, Generic, TypeVar
 
-__all__ = ["Registry", "UnknownName"]
+__all__ = ["Registry", "UnknownName", "MissingExtra", "OPTIONAL", "require"]
+
+#: optional third-party modules -> the extra of ``pyproject.toml`` that installs them
+OPTIONAL: dict[str, str] = {"nlopt": "nlopt", "cvxpy": "convex", "distributed": "dask", "dask": "dask"}
+
+
+class MissingExtra(ImportError):
+    """An optional dependency is not installed; the message names the extra to install."""
+
+
+def _missing(exc: ModuleNotFoundError, what: str) -> MissingExtra | None:
+    top = (exc.name or "").split(".")[0]
+    if top not in OPTIONAL:
+        return None
+    extra = OPTIONAL[top]
+    return MissingExtra(f"{what} needs the optional dependency {top!r}: pip install 'haybench[{extra}]' "
+                        f"(in a clone: pip install -e '.[{extra}]'; '.[all]' installs every extra)")
+
+
+def require(module: str, what: str) -> Any:
+    """``importlib.import_module(module)``, or `MissingExtra` naming the extra that provides it."""
+    try:
+        return importlib.import_module(module)
+    except ModuleNotFoundError as exc:
+        err = _missing(exc, what)
+        if err is None:
+            raise
+        raise err from None
 
 T = TypeVar("T")
 
@@ -84,7 +111,7 @@ class Registry(Generic[T]):
         if name not in self._builtin:
             raise self._error(f"unknown {self.kind} {name!r}; valid {self.kind}s: {', '.join(self.names())}")
         module, _, attr = self._builtin[name].partition(":")
-        obj = getattr(importlib.import_module(module), attr)
+        obj = getattr(require(module, f"{self.kind} {name!r}"), attr)
         if self._check is not None:
             self._check(name, obj)
         self._loaded[name] = obj

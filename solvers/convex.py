@@ -111,7 +111,9 @@ def _check(name: str, A, b, lb, ub, vec):
 @functools.lru_cache(maxsize=64)
 def _compiled(kind: str, m: int, n: int, backend: str):
     """A parametrized cvxpy problem (DPP) for one shape: compiled once, re-solved fast."""
-    import cvxpy as cp
+    from problems._registry import require
+
+    cp = require("cvxpy", f"backend {backend!r} of solvers.convex")
 
     x = cp.Variable(n)
     A, b = cp.Parameter((m, n)), cp.Parameter(m)
@@ -130,7 +132,9 @@ _SOLVER_OPTS = {
 
 
 def _cvxpy_solve(kind, A, b, lb, ub, c, backend) -> ConvexResult:
-    import cvxpy as cp
+    from problems._registry import require
+
+    cp = require("cvxpy", f"backend {backend!r} of solvers.convex")
 
     prob, x, params = _compiled(kind, A.shape[0], A.shape[1], backend)
     for p, v in zip(params, (A, b, lb, ub, c)):

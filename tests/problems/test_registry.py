@@ -68,3 +68,28 @@ def test_every_builtin_suite_declares_loadable_plugins(name):
     if suite.figures:
         assert callable(importlib.import_module(suite.figures).figures)
     assert SUITES.module_of(name) and np.all([isinstance(s, str) for s in suite.solvers])
+
+
+def test_a_missing_extra_is_named(monkeypatch):
+    """Without NLopt installed, asking for an NLopt solver names the extra to install."""
+    import sys
+
+    from problems._registry import MissingExtra, Registry
+
+    monkeypatch.setitem(sys.modules, "nlopt", None)  # as if not installed
+    monkeypatch.delitem(sys.modules, "solvers.nlopt_adapters", raising=False)
+    reg: Registry = Registry("solver", {"nlopt-mma": "solvers.nlopt_adapters:NloptMMA"})
+    with pytest.raises(MissingExtra, match=r"solver 'nlopt-mma' needs the optional dependency 'nlopt': "
+                                           r"pip install 'haybench\[nlopt\]'"):
+        reg.get("nlopt-mma")
+
+
+def test_dask_executor_without_dask_is_bad_input(monkeypatch):
+    import sys
+
+    from harness._dask import dask_map
+    from harness._plan import HarnessArgumentError
+
+    monkeypatch.setitem(sys.modules, "distributed", None)
+    with pytest.raises(HarnessArgumentError, match=r"haybench\[dask\]"):
+        list(dask_map([], "local:1"))
