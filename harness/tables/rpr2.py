@@ -85,6 +85,20 @@ def _ours(runs: pd.DataFrame, problem: str, start: str) -> pd.DataFrame:
     return sub.sort_values("solver", kind="stable", key=lambda col: col.map(lambda s: (order.get(s, len(order)), s)))
 
 
+def _o_row(source, solver, ng, nfg, f_star, ev: dict, d: str, status: str) -> dict[str, Any]:
+    """A row of Tables 4.3-4.6: a design's f* beside our chord-method and exact f at it."""
+    return {"source": source, "solver": solver, "N^g": ng, "N^fg": nfg, "f* (disc.)": f_star,
+            "f ours at d* (disc.)": _num(ev.get("f")), "f exact at d*": _num(ev.get("f_exact")), "d*": d,
+            "status": status}
+
+
+def _p_row(P, source, solver, ng, nfg, f0, f_star, g_star, ev: dict, d: str, status: str) -> dict[str, Any]:
+    """A row of Table 4.9: a design's f*, g* beside its exact kappa^-1 and enclosure."""
+    return {"P": P, "source": source, "solver": solver, "N^g": ng, "N^fg": nfg, "f(d0)": f0, "f*": f_star,
+            "g*": g_star, "f exact": _num(ev.get("kinv_exact"), ".4f"), "dW_p exact": _num(ev.get("dwp_exact"), ".2g"),
+            "enclosed": ev.get("enclosed", ""), "d*": d, "status": status}
+
+
 def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
     rows: list[dict[str, Any]] = []
     flags: list[bool] = []
@@ -92,18 +106,14 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
     for _, t in th.iterrows():  # the thesis's rows, recomputed exactly
         d = [float(t[c]) for c in ("x_A", "y_A", "x_B", "l1_min", "l2_min")]
         ev = _evaluate("o", d)
-        rows.append({"source": "thesis", "solver": t["algorithm"], "N^g": t["ng"], "N^fg": "",
-                     "f* (disc.)": t["f_star"], "f ours at d* (disc.)": _num(ev.get("f")),
-                     "f exact at d*": _num(ev.get("f_exact")), "d*": _fmt_d(d), "status": ""})
+        rows.append(_o_row("thesis", t["algorithm"], t["ng"], "", t["f_star"], ev, _fmt_d(d), ""))
         flags.append(False)
     for _, r in _ours(runs, "rpr2-o", start).iterrows():
         applicable = r["status"] != "not_applicable"
         ev = _evaluate("o", r["x"]) if applicable and len(r["x"]) == 5 else {}
         f = r["f"]
-        rows.append({"source": "ours", "solver": r["solver"], "N^g": count_cell(r["ng"]), "N^fg": count_cell(r["nfg"]),
-                     "f* (disc.)": _num(f), "f ours at d* (disc.)": _num(ev.get("f")),
-                     "f exact at d*": _num(ev.get("f_exact")), "d*": _fmt_d(r["x"]) if applicable else "",
-                     "status": _status(r)})
+        rows.append(_o_row("ours", r["solver"], count_cell(r["ng"]), count_cell(r["nfg"]), _num(f), ev,
+                           _fmt_d(r["x"]) if applicable else "", _status(r)))
         thesis_alg = r["solver"] in THESIS_NAMES.values()
         flags.append(bool(applicable and thesis_alg and not (np.isfinite(f) and f <= O_LIMIT)))
     frame = pd.DataFrame(rows)
@@ -223,6 +233,14 @@ def _compromises(row) -> str:
         return ""
 
 
+def _e_row(start, source, solver, ng, nfg, f_star, h_star, ev: dict, polish: dict, d: str,
+           status: str) -> dict[str, Any]:
+    """A row of Table 4.7: a design's f*, h* beside exact geometry and the exact problem's polish."""
+    return {"start": start, "source": source, "solver": solver, "N^g": ng, "N^fg": nfg, "f*": f_star, "h*": h_star,
+            "f exact": _num(ev.get("dwc_exact")), "dW_p exact": _num(ev.get("dwp_exact"), ".3g"), **polish,
+            "d*": d, "status": status}
+
+
 def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame, reference: dict) -> Table:
     rows: list[dict[str, Any]] = []
     flags: list[bool] = []
@@ -254,48 +272,18 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame, reference: dict) -> Table
         start = t["start"]
         d = [float(t[c]) for c in ("x_A", "y_A", "x_B", "l1_min", "l2_min")]
         ev = _evaluate("e", d)
-        rows.append(
-            {
-                "start": start,
-                "source": "thesis",
-                "solver": "Dynamic-Q",
-                "N^g": t["ng"],
-                "N^fg": "",
-                "f*": t["f_star"],
-                "h*": t["h_star"],
-                "f exact": _num(ev.get("dwc_exact")),
-                "dW_p exact": _num(ev.get("dwp_exact"), ".3g"),
-                **polished(d, ("thesis", start)),
-                "d*": _fmt_d(d),
-                "status": "",
-            }
-        )
+        rows.append(_e_row(start, "thesis", "Dynamic-Q", t["ng"], "", t["f_star"], t["h_star"], ev,
+                           polished(d, ("thesis", start)), _fmt_d(d), ""))
         flags.append(False)
         f_th = float(t["f_star"])
         for _, r in _ours(runs, "rpr2-e", start).iterrows():
             applicable = r["status"] != "not_applicable" and len(r["x"]) == 5
             ev = _evaluate("e", r["x"]) if applicable else {}
-            rows.append(
-                {
-                    "start": start,
-                    "source": "ours",
-                    "solver": r["solver"],
-                    "N^g": count_cell(r["ng"]),
-                    "N^fg": count_cell(r["nfg"]),
-                    "f*": _num(r["f"]),
-                    "h*": _num(ev.get("h"), ".2g"),
-                    "f exact": _num(ev.get("dwc_exact")),
-                    "dW_p exact": _num(ev.get("dwp_exact"), ".3g"),
-                    **(
-                        polished(r["x"], ("ours", start) if r["solver"] == "dynamic-q" else None)
-                        if applicable
-                        else {"exact local min": "", "f nearest enclosing": "", "box drop": ""}
-                    ),
-                    "d*": _fmt_d(r["x"]) if applicable else "",
-                    "status": _status(r),
-                    "compromise P[i]": _compromises(r) if r["solver"] == "dynamic-q" else "",
-                }
-            )
+            pol = (polished(r["x"], ("ours", start) if r["solver"] == "dynamic-q" else None) if applicable
+                   else {"exact local min": "", "f nearest enclosing": "", "box drop": ""})
+            rows.append(_e_row(start, "ours", r["solver"], count_cell(r["ng"]), count_cell(r["nfg"]), _num(r["f"]),
+                               _num(ev.get("h"), ".2g"), ev, pol, _fmt_d(r["x"]) if applicable else "", _status(r))
+                        | {"compromise P[i]": _compromises(r) if r["solver"] == "dynamic-q" else ""})
             bad = (r["solver"] == "dynamic-q" and applicable
                    and not (abs(float(r["f"]) - f_th) <= E_REL * f_th and ev.get("dwp_exact", 1.0) <= 0.01))
             flags.append(bool(bad))
@@ -349,33 +337,17 @@ def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
         P = t["workspace"]
         d = [float(t[c]) for c in ("x_A", "y_A", "x_B")]
         ev = _evaluate("p", d, P)
-        rows.append({"P": P, "source": "thesis", "solver": "Dynamic-Q", "N^g": t["ng"], "N^fg": "",
-                     "f(d0)": t["f_d0"], "f*": t["f_star"], "g*": t["g_star"],
-                     "f exact": _num(ev.get("kinv_exact"), ".4f"), "dW_p exact": _num(ev.get("dwp_exact"), ".2g"),
-                     "enclosed": ev.get("enclosed", ""), "d*": _fmt_d(d), "status": ""})
+        rows.append(_p_row(P, "thesis", "Dynamic-Q", t["ng"], "", t["f_d0"], t["f_star"], t["g_star"], ev,
+                           _fmt_d(d), ""))
         flags.append(False)
         f0 = _evaluate("p", (-4.0, -0.1, 4.0), P).get("f")
         for _, r in _ours(runs, f"rpr2-p{P[-1]}", "d0").iterrows():
             applicable = r["status"] != "not_applicable"
             ev = _evaluate("p", r["x"], P) if applicable and len(r["x"]) == 3 else {}
             fstar = -float(r["f"]) if r["f"] is not None and np.isfinite(r["f"]) else float("nan")
-            rows.append(
-                {
-                    "P": P,
-                    "source": "ours",
-                    "solver": r["solver"],
-                    "N^g": count_cell(r["ng"]),
-                    "N^fg": count_cell(r["nfg"]),
-                    "f(d0)": _num(f0, ".3f"),
-                    "f*": _num(fstar, ".4f"),
-                    "g*": _num(ev.get("g"), ".2g"),
-                    "f exact": _num(ev.get("kinv_exact"), ".4f"),
-                    "dW_p exact": _num(ev.get("dwp_exact"), ".2g"),
-                    "enclosed": ev.get("enclosed", ""),
-                    "d*": _fmt_d(r["x"]) if applicable else "",
-                    "status": _status(r),
-                }
-            )
+            rows.append(_p_row(P, "ours", r["solver"], count_cell(r["ng"]), count_cell(r["nfg"]), _num(f0, ".3f"),
+                               _num(fstar, ".4f"), _num(ev.get("g"), ".2g"), ev,
+                               _fmt_d(r["x"]) if applicable else "", _status(r)))
             bad = (r["solver"] == "dynamic-q" and applicable
                    and not (fstar >= float(t["f_star"]) - P_TOL and ev.get("enclosed", False)))
             flags.append(bool(bad))

@@ -130,6 +130,31 @@ def _thesis_windows_note() -> str:
     )
 
 
+def _g2(v) -> float:
+    """A value to 2 significant digits (NaN for None)."""
+    return float(f"{float('nan') if v is None else v:.2g}")
+
+
+def _fmt_d(d) -> str:
+    return "" if d is None else "[" + ", ".join(f"{v:.4g}" for v in d) + "]"
+
+
+def _design_row(pname: str, solver: str, f0: float, th: dict, *, kinv: float, ev: dict, win: str,
+                g: float | None = None, d=None, status: str = "", nfg=None, nf=None, time_s=None,
+                with_thesis_d: bool = True) -> dict:
+    """One row of Tables 5.3-5.5: a design (a run's end, the exact-model optimum or the
+    thesis's d*), its exact check ``ev`` (ratio, enclosed, leg excess), beside the thesis's row."""
+    return {
+        "P": pname, "solver": solver, "status": status, "N^fg": nfg, "N^f": nf,
+        "f(d0)": round(f0, 4), "f*": round(kinv, 4), "g*": g, "d*": _fmt_d(d),
+        "exact dW_p/W_p": _g2(ev.get("ratio")), "enclosed": bool(ev.get("enclosed", False)),
+        "leg excess": _g2(ev.get("max_leg_violation")), "phi window (deg)": win,
+        "f* (thesis)": th.get("f_star"), "f(d0) (thesis)": th.get("f_d0"), "N^g (thesis)": th.get("ng"),
+        "g* (thesis)": th.get("g_star"), "d* (thesis)": _fmt_d(th.get("d_star")) if with_thesis_d else "",
+        "time_s": time_s,
+    }
+
+
 def _stored_optimum(optima: dict, kind: str, pname: str) -> dict:
     """The stored exact-model optimum of a case, d as an array (None when not stored)."""
     opt = dict(optima.get(f"{kind}/{pname}") or {})
@@ -157,33 +182,15 @@ def synthesis_table(runs: pd.DataFrame, kind: str, optima: dict | None = None) -
         # what the exact model allows (independent of the chord formulation); computed once per code version
         opt = _stored_optimum(optima or {}, kind, pname)
         win, miss = _window(kind, opt["d"], pname)
-        rows.append({
-            "P": pname, "solver": "(exact-model optimum)", "status": "", "N^fg": None, "N^f": None,
-            "f(d0)": round(f0, 4), "f*": round(opt["kinv"], 4), "g*": None,
-            "d*": "" if opt["d"] is None else "[" + ", ".join(f"{v:.4g}" for v in opt["d"]) + "]",
-            "exact dW_p/W_p": float(f"{opt['ratio']:.2g}"), "enclosed": bool(opt["enclosed"]),
-            "leg excess": float(f"{opt.get('max_leg_violation', float('nan')):.2g}"),
-            "phi window (deg)": win,
-            "f* (thesis)": th.get("f_star"), "f(d0) (thesis)": th.get("f_d0"), "N^g (thesis)": th.get("ng"),
-            "g* (thesis)": th.get("g_star"), "d* (thesis)": "", "time_s": None,
-        })
+        rows.append(_design_row(pname, "(exact-model optimum)", f0, th, kinv=opt["kinv"], ev=opt, d=opt["d"],
+                                win=win, with_thesis_d=False))
         flags.append({k: False for k in rows[-1]} | {
             "f*": th.get("f_star") is not None and not (opt["kinv"] >= th["f_star"] - F_TOL), "phi window (deg)": miss})
         if "d_star" in th:  # the published design, checked in our model
             ev_t = evaluate(kind, th["d_star"], pname)
             win, miss = _window(kind, th["d_star"], pname)
-            rows.append({
-                "P": pname, "solver": "(thesis d*)", "status": "", "N^fg": None, "N^f": None,
-                "f(d0)": round(f0, 4), "f*": round(ev_t["kinv"], 4), "g*": float(f"{ev_t.get('g', float('nan')):.2g}"),
-                "d*": "", "exact dW_p/W_p": float(f"{ev_t.get('ratio', float('nan')):.2g}"),
-                "enclosed": bool(ev_t.get("enclosed", False)),
-                "leg excess": float(f"{ev_t.get('max_leg_violation', float('nan')):.2g}"),
-                "phi window (deg)": win,
-                "f* (thesis)": th.get("f_star"), "f(d0) (thesis)": th.get("f_d0"), "N^g (thesis)": th.get("ng"),
-                "g* (thesis)": th.get("g_star"),
-                "d* (thesis)": "[" + ", ".join(f"{v:.4g}" for v in th["d_star"]) + "]",
-                "time_s": None,
-            })
+            rows.append(_design_row(pname, "(thesis d*)", f0, th, kinv=ev_t["kinv"], ev=ev_t, g=_g2(ev_t.get("g")),
+                                    win=win))
             flags.append({k: False for k in rows[-1]} | {
                 "enclosed": not bool(ev_t.get("enclosed", False)),
                 "phi window (deg)": miss,
@@ -199,29 +206,9 @@ def synthesis_table(runs: pd.DataFrame, kind: str, optima: dict | None = None) -
             fstar = ev.get("kinv", float("nan"))
             enclosed = bool(ev.get("enclosed", False))
             win, miss = _window(kind, x if ok else None, pname)
-            rows.append(
-                {
-                    "P": pname,
-                    "solver": r["solver"],
-                    "status": r["status"],
-                    "N^fg": count_cell(r["nfg"]),
-                    "N^f": count_cell(r["nf"]),
-                    "f(d0)": round(f0, 4),
-                    "f*": round(fstar, 4),
-                    "g*": float(f"{ev.get('g', float('nan')):.2g}"),
-                    "d*": "[" + ", ".join(f"{v:.4g}" for v in x) + "]" if ok else "",
-                    "exact dW_p/W_p": float(f"{ev.get('ratio', float('nan')):.2g}"),
-                    "enclosed": enclosed,
-                    "leg excess": float(f"{ev.get('max_leg_violation', float('nan')):.2g}"),
-                    "phi window (deg)": win,
-                    "f* (thesis)": th.get("f_star"),
-                    "f(d0) (thesis)": th.get("f_d0"),
-                    "N^g (thesis)": th.get("ng"),
-                    "g* (thesis)": th.get("g_star"),
-                    "d* (thesis)": "[" + ", ".join(f"{v:.4g}" for v in th["d_star"]) + "]" if "d_star" in th else "",
-                    "time_s": round(float(r["wall_time_s"]), 1),
-                }
-            )
+            rows.append(_design_row(pname, r["solver"], f0, th, kinv=fstar, ev=ev, g=_g2(ev.get("g")),
+                                    d=x if ok else None, win=win, status=r["status"], nfg=count_cell(r["nfg"]),
+                                    nf=count_cell(r["nf"]), time_s=round(float(r["wall_time_s"]), 1)))
             low = th.get("f_star") is not None and not (fstar >= th["f_star"] - F_TOL)
             flags.append({k: False for k in rows[-1]} | {"f*": bool(low), "enclosed": not enclosed,
                                                           "phi window (deg)": bool(miss and ok)})
