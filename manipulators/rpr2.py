@@ -230,7 +230,7 @@ class RPR2:
                 break
             d *= 0.5
             ws = chord_boundary(self.constraints, u0, d, **kw)
-            ws.info["refined_from"] = float(chord)
+            ws.info["refined_from"] = float(chord)  # type: ignore[index]  # a dict, read-only to users
         return ws
 
     def exact_area(self, grad: bool = False):

@@ -53,6 +53,7 @@ def fd_jacobian(
             evals += 1
             cols.append((fp - fm) / (2.0 * step))
         else:
+            assert f0 is not None  # evaluated above for forward differences
             cols.append((fp - np.atleast_1d(f0)) / step)
     return np.column_stack(cols), evals
 
@@ -65,5 +66,6 @@ def fd_gradient(
     scheme: str = "forward",
 ) -> tuple[np.ndarray, int]:
     """Gradient of a scalar function by finite differences; returns (g, n_evals)."""
-    J, evals = fd_jacobian(fun, x, None if f0 is None else np.atleast_1d(f0), step, scheme)
+    J, evals = fd_jacobian(fun, x, None if f0 is None else np.atleast_1d(f0), step,  # type: ignore[arg-type]
+                           scheme)  # a scalar function is the m = 1 case of fd_jacobian
     return J[0], evals

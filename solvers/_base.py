@@ -171,7 +171,7 @@ class AbstractSolver(abc.ABC):
         rows = []
         for f in dataclasses.fields(cls):  # type: ignore[arg-type]  # a dataclass subclass
             default = f.default if f.default is not dataclasses.MISSING else (
-                f.default_factory() if f.default_factory is not dataclasses.MISSING else None  # type: ignore[misc]  # stub: Field.default_factory
+                f.default_factory() if f.default_factory is not dataclasses.MISSING else None
             )
             check = f.metadata.get("check")
             rows.append({"name": f.name, "default": default, "doc": f.metadata.get("doc", ""),

@@ -23,7 +23,7 @@ N^it (``nit``) is the number of line searches; N^fg is measured by the oracle.
 from __future__ import annotations
 
 import dataclasses
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 from scipy.optimize._dcsrch import dcstep  # MINPACK-2 safeguarded cubic/quadratic step
@@ -184,7 +184,7 @@ class AbstractCGPlus(AbstractSolver):
         new, nrst, it = True, 0, 0
         dg0 = stp = 0.0
         base = {"x": x, "d": d}
-        trial = {}
+        trial: dict[str, Any] = {}
 
         def phi(a: float) -> tuple[float, float]:
             xt = base["x"] + a * base["d"]

@@ -90,7 +90,7 @@ def map_status(backend: str, raw: str | int) -> tuple[Status, bool | None]:
     table = LINPROG_STATUS_MAP if backend == "linprog" else STATUS_MAPS.get(backend)
     if table is None:
         raise ValueError(f"unknown convex backend {backend!r}; valid: {', '.join(LP_BACKENDS)}")
-    return table.get(raw, (Status.ERROR, None))
+    return table.get(raw, (Status.ERROR, None))  # type: ignore[arg-type]  # str or int keys by backend
 
 
 def _check(name: str, A, b, lb, ub, vec):

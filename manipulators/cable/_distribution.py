@@ -230,7 +230,7 @@ def distribute(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, method:
         if n == 3:  # unique solution (6.12): also require a non-singular S
             t[:, ~(np.abs(_det_cols(X, Y, M, 0, 1, 2)) > SINGULAR_TOL)] = np.nan
         feas = ((t >= lo_t) & (t <= hi_t)).all(0)
-        return feas, (np.where(feas, t, np.nan).T if need_tensions else None)
+        return np.asarray(feas), (np.where(feas, t, np.nan).T if need_tensions else None)
     if n == 4:
         tp, z, lo, hi = _interval4_rows(X, Y, M, w, t_min, t_max, tol)
         feas = lo <= hi

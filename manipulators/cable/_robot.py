@@ -170,7 +170,7 @@ class CableRobot:
         else:
             raise ValueError(f"unknown tension backend {backend!r}; valid: exact, {', '.join(BACKENDS)}")
         feas = feas & geo_ok
-        return feas, np.where(feas[:, None], T, np.nan)
+        return feas, np.where(feas[:, None], np.asarray(T, dtype=float), np.nan)
 
     def tensions(self, u: Any, phi: float, wrench: Any, method: str = "l1", *,
                  backend: str = "exact", tol: float = 1e-10) -> np.ndarray | None:

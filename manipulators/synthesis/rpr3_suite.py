@@ -32,6 +32,7 @@ centre), so g keeps a slope towards feasibility; kappa^-1 is still defined (f <=
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -68,6 +69,11 @@ SETTINGS: dict[str, dict[str, Any]] = {
 SOLVERS = ("dynamic-q", "dynamic-q-plus", "scipy-slsqp", "ipopt", "nlopt-mma", "scipy-cobyla")
 
 
+def _kinv_at(m: RPR3, U, phi: float):
+    """kappa^-1 of ``m`` at positions U and orientation phi (for `min_inverse_condition`)."""
+    return m.inverse_condition(U, phi)
+
+
 def design(d) -> RPR3 | None:
     """The 3-RPR of design vector d (eq. 5.36) with the Section 5.6.2 leg limits; None if invalid."""
     d = np.asarray(d, dtype=float)
@@ -87,7 +93,7 @@ class _Evaluator:
         self.kind, self.P, self.s = kind, P, s
         self.chord = chord or s["chord"]
         self._memo: DesignCache[tuple[RPR3 | None, list[Workspace]]] = DesignCache(size)
-        self._wp = None  # W_p as a shapely polygon, made on first use
+        self._wp: Any = None  # W_p as a shapely polygon, made on first use
 
     # one workspace per slice (SO, MO) or the dextrous workspace (D)
     def _workspaces(self, m: RPR3) -> list[Workspace]:
@@ -129,7 +135,7 @@ class _Evaluator:
         m = design(d)
         if m is None:
             return 0.0
-        vals = [min_inverse_condition(lambda U, p=phi: m.inverse_condition(U, p), self.P, k=N_KAPPA)
+        vals = [min_inverse_condition(functools.partial(_kinv_at, m, phi=phi), self.P, k=N_KAPPA)
                 for phi in self.s["phis"]]
         v = min(vals)
         return v if math.isfinite(v) else 0.0
@@ -347,7 +353,7 @@ def evaluate(kind: str, d, prescribed: str = "P1", exact: bool = True) -> dict[s
             beta = polar_angles(w.boundary, ev.P.centre)[0]
             phis = ev.s["phis"] if ev.s["dextrous"] else [w.info.get("phi", 0.0)]
             for phi in phis:
-                vals.append(min_inverse_condition(lambda U, p=phi: m.inverse_condition(U, p), ev.P, beta=beta))
+                vals.append(min_inverse_condition(functools.partial(_kinv_at, m, phi=phi), ev.P, beta=beta))
         out["kinv_thesis"] = float(min(vals))
     if exact:
         out.update(exact_enclosure(k, d, prescribed))

@@ -114,7 +114,7 @@ class Workspace:
         if self.boundary.shape[0] >= 3:
             poly = self.polygon()
             return np.asarray(shapely.intersects_xy(poly, p[:, 0], p[:, 1]), dtype=bool)
-        if self.mask is not None:
+        if self.mask is not None and self.grid is not None:
             gx, gy = self.grid
             ix = _nearest(gx, p[:, 0])
             iy = _nearest(gy, p[:, 1])

@@ -61,7 +61,8 @@ def make_case(problem_id: str, n: int | None = None, *, rho: float | None = None
     meta = {"thesis_problem": thesis_label(problem_id), "cap": cap, **_META.get(problem_id, {})}
     if variant:
         meta["solvers"] = ("sqsd",)  # only SQSD's settings differ in this variant
-    return Case(problem=problem, problem_id=problem_id, start="x0", options=options, variant=variant, meta=meta)
+    return Case(problem=problem, problem_id=problem_id, start="x0", options=options,  # type: ignore[arg-type]
+                variant=variant, meta=meta)  # (options: solver -> settings, typed loosely above)
 
 
 def build_cases() -> list[Case]:
