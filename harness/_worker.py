@@ -2,7 +2,7 @@
 
 Nothing here raises: an exception anywhere (building the problem, the solver, the
 row) becomes a row with status ``error`` and the message, so a suite always goes on
-(issue 4, Section 2).  Rows for runs that never produced a result (time-outs, dead
+(docs/harness.md, "Fault isolation").  Rows for runs that never produced a result (time-outs, dead
 workers, not-applicable pairs) are built from the `RunSpec` alone by `spec_row`.
 """
 

@@ -53,9 +53,8 @@ REASONS = {
     "that the thesis's Dynamic-Q found",
     "hs013": "degenerate (LICQ fails at x* = (1, 0)); a violation of 1e-12..1e-8 buys a lower f, so the count depends "
     "on how a method treats near-feasible points (the thesis's Dynamic-Q hit its step cap here)",
-    "hs055": "rank-deficient equalities: SLSQP's least-squares subproblem is sensitive to rounding here (measured: "
-    "46 evaluations with a multithreaded BLAS, 148 with one BLAS thread); local minimum 20/3 at the other "
-    "end of the feasible segment",
+    "hs055": "rank-deficient equalities: SLSQP's least-squares subproblem is sensitive to rounding here, so its "
+    "N^fg depends on the BLAS thread count (docs/hs.md); local minimum 20/3 at the other end of the feasible segment",
     "hs106": "badly scaled (x up to 1e4); the thesis's step limit for 106 is our reading rho = 100. The thesis's "
     "E^r = 1.18e-5 is against the HS book's 7049.33, which is not optimal (f_act here = 7049.248)",
     "hs072": "step limit rho = 100 by our reading of the garbled Sec. 3.4 sentence",
