@@ -62,7 +62,8 @@ class DynamicQPlus(AbstractSolver):
     """
 
     name = "dynamic-q-plus"
-    summary = "Dynamic-Q+: spherical Lagrangian curvature, exact elastic QP subproblems, trust region [OWN]"
+    summary = ("Dynamic-Q+: BFGS Lagrangian Hessian started from eq. (3.6), exact elastic QP subproblems, "
+               "trust region, second-order correction [OWN]")
     family = "own"
     handles = frozenset({"bounds", "ineq", "eq"})
 
