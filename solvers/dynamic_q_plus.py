@@ -1,17 +1,19 @@
 """Dynamic-Q+: Dynamic-Q (thesis Algorithm 3.2) carried past the thesis (our extension).
 
 Kept from Dynamic-Q: one oracle point per iteration (f, g, h and all gradients, one N^fg),
-spherical quadratic models whose curvature comes from two points (eq. 3.6), exact simple
-bounds (3.7) and a move limit (3.8).  Changed (see docs/thesis_solvers.md, "Dynamic-Q+"):
+the two-point curvature of eq. (3.6), exact simple bounds (3.7) and a move limit (3.8).
+Changed (see docs/thesis_solvers.md, "Dynamic-Q+"):
 
-1. one curvature for the Lagrangian f + lam^T g + nu^T h (eq. 3.6 on L), safeguarded to
-   [sigma_min, sigma_max]; the constraints are linearized, so the subproblem is a convex QP;
+1. the model Hessian is a Powell-damped BFGS matrix of the Lagrangian f + lam^T g + nu^T h,
+   started from eq. (3.6)'s spherical curvature (options: one spherical or a diagonal
+   curvature instead); the constraints are linearized, so the subproblem is a convex QP;
 2. the subproblem is solved exactly (`solvers._qp_subproblem`, Clarabel) instead of by LFOPC's
    penalty compromise, with elastic l1 slacks so it is always feasible;
 3. the move limit is a box trust region adapted by the ratio of actual to predicted reduction
-   of the l1 exact-penalty merit f + mu (sum max(g,0) + sum |h|); rejected steps are not taken
-   but their curvature is used;
-4. stopping tests relative to the problem's scale.
+   of the l1 exact-penalty merit f + mu (sum max(g,0) + sum |h|), with Fletcher's
+   second-order correction of rejected steps along curved constraints;
+4. stopping tests relative to the problem's scale, and one restart from the spherical model
+   before stopping.
 """
 
 from __future__ import annotations
