@@ -24,6 +24,7 @@ BUILTIN: dict[str, str] = {
     "tdpm": "manipulators.synthesis.tdpm_suite:SUITE",
     "hs-all": "problems.s2mpj.hs_all_suite:SUITE",
     "cutest": "problems.s2mpj.cutest_suite:SUITE",
+    "spatial": "manipulators.synthesis.spatial_suite:SUITE",
 }
 
 
