@@ -22,7 +22,8 @@ import numpy as np
 
 from ._distribution6 import distribute6
 
-__all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "ray_boundary", "grid_points", "METHODS"]
+__all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "ray_boundary", "ray_reach", "grid_points",
+           "METHODS"]
 
 #: Tension methods: minimum-norm (6.14), constrained l2 (6.17, a QP), l1 (6.19).
 METHODS = ("l1", "l2", "min-norm")
@@ -91,13 +92,14 @@ def grid_points(box: Any, resolution: int) -> tuple[np.ndarray, np.ndarray]:
     return b, np.column_stack([X.ravel(), Y.ravel(), Z.ravel()])
 
 
-def ray_boundary(feasible: Any, centre: Any, directions: Any, reach: float, tol: float = 1e-9) -> np.ndarray:
-    """First feasibility change along rays from a feasible ``centre``, by bisection, all rays at once.
+def ray_reach(feasible: Any, centre: Any, directions: Any, reach: float, tol: float = 1e-9) -> np.ndarray:
+    """Distance to the first feasibility change along rays from a feasible ``centre``, by
+    bisection, all rays at once (the spatial counterpart of the chord method's bisection).
 
     ``feasible`` maps points (k, 3) to (k,) bool. For each direction d (normalized) returns
-    centre + s d, s found by bisection on [0, reach] to ``tol`` (s = reach where the end of
-    the segment is feasible: the ray is then not cut within ``reach``). Exact for sets
-    that are star-shaped about the centre; otherwise some crossing on the ray.
+    s in [0, reach], found by bisection to ``tol`` (s = reach where the end of the segment is
+    feasible: the ray is then not cut within ``reach``). Exact for sets that are
+    star-shaped about the centre; otherwise some crossing on the ray.
     """
     c = np.asarray(centre, dtype=float)
     D = np.atleast_2d(np.asarray(directions, dtype=float))
@@ -120,7 +122,15 @@ def ray_boundary(feasible: Any, centre: Any, directions: Any, reach: float, tol:
         f = feasible(c + mid[:, None] * D[act])
         lo[act[f]] = mid[f]
         hi[act[~f]] = mid[~f]
-    return c + lo[:, None] * D
+    return lo
+
+
+def ray_boundary(feasible: Any, centre: Any, directions: Any, reach: float, tol: float = 1e-9) -> np.ndarray:
+    """Boundary points centre + s d along rays, s from `ray_reach` (same arguments)."""
+    c = np.asarray(centre, dtype=float)
+    D = np.atleast_2d(np.asarray(directions, dtype=float))
+    s = ray_reach(feasible, c, D, reach, tol)
+    return c + s[:, None] * (D / np.linalg.norm(D, axis=1, keepdims=True))
 
 
 @dataclasses.dataclass

@@ -37,7 +37,7 @@ import numpy as np
 
 from problems import Case, Problem, Suite
 
-from ..spatial import GoughStewart, SpatialCableRobot, distribute6
+from ..spatial import GoughStewart, SpatialCableRobot, distribute6, ray_reach
 
 __all__ = ["SUITE", "SOLVERS", "cable_problem", "gs_problem", "cable_design", "gs_design", "CABLE", "GS",
            "dextrous_rays", "sphere_directions"]
@@ -130,16 +130,7 @@ def dextrous_rays(robot: SpatialCableRobot, centre: Any = None, directions: Any 
 
     if not dextrous(c[None])[0]:
         return np.zeros(len(D))
-    lo, hi = np.zeros(len(D)), np.full(len(D), reach)
-    out = ~dextrous(c + hi[:, None] * D)
-    lo[~out] = hi[~out]
-    while np.any(out & (hi - lo > tol)):
-        act = np.flatnonzero(out & (hi - lo > tol))
-        mid = 0.5 * (lo[act] + hi[act])
-        f = dextrous(c + mid[:, None] * D[act])
-        lo[act[f]] = mid[f]
-        hi[act[~f]] = mid[~f]
-    return lo
+    return ray_reach(dextrous, c, D, reach, tol)
 
 
 def ray_volume(radii: np.ndarray) -> float:
