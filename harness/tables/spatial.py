@@ -113,5 +113,13 @@ def _growth_table(runs: pd.DataFrame) -> Table:
 
 
 def tables(runs: pd.DataFrame) -> list[Table]:
+    from manipulators.synthesis.spatial_suite import SOLVERS
+
     runs = runs[runs["suite"] == "spatial"] if "suite" in runs else runs
+    # rows in the suite's case and solver order, not in the order the runs finished
+    order = {s: i for i, s in enumerate(SOLVERS)}
+    runs = runs.assign(_c=runs["problem"].map({"spatial-cable-9": 0, "spatial-cable-13": 1, "spatial-gs-9": 2,
+                                                "spatial-gs-18": 3}).fillna(9),
+                       _s=runs["solver"].map(order).fillna(len(order)))
+    runs = runs.sort_values(["_c", "_s", "solver"], kind="stable").drop(columns=["_c", "_s"])
     return [_runs_table(runs), _growth_table(runs)]
