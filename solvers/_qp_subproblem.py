@@ -61,6 +61,16 @@ def _settings() -> clarabel.DefaultSettings:
     return settings
 
 
+def _csc(dense: np.ndarray) -> sp.csc_matrix:
+    """The nonzeros of a dense matrix as CSC, built with NumPy (scipy's general converters
+    cost more than the interior-point solve at these sizes); same structure as
+    ``scipy.sparse.csc_matrix(dense)``."""
+    cols, rows = np.nonzero(dense.T)  # column-major: sorted by column, then row
+    indptr = np.zeros(dense.shape[1] + 1, dtype=np.int64)
+    np.cumsum(np.bincount(cols, minlength=dense.shape[1]), out=indptr[1:])
+    return sp.csc_matrix((dense.T[cols, rows], rows.astype(np.int64), indptr), shape=dense.shape)
+
+
 def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
                      Jh: np.ndarray, d_lo: np.ndarray, d_up: np.ndarray, mu: float) -> ElasticQPResult:
     """Solve the elastic QP above (box ``d_lo <= d <= d_up``; ``sigma`` a positive scalar,
@@ -70,7 +80,9 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     ne = p + 2 * q  # elastic variables s, t+, t-
     sig = np.asarray(sigma, dtype=float)
     if sig.ndim == 2:  # full (quasi-Newton) Hessian: Clarabel reads the upper triangle
-        P = sp.block_diag([sp.triu(sp.csc_matrix(sig)), sp.csc_matrix((ne, ne))], format="csc")
+        Pd = np.zeros((nv, nv))
+        Pd[:n, :n] = np.triu(sig)
+        P = _csc(Pd)
     else:
         diag = np.broadcast_to(sig, (n,)).copy()
         P = sp.csc_matrix((diag, np.arange(n), np.r_[np.arange(n + 1), np.full(ne, n)]), shape=(nv, nv))
@@ -89,7 +101,7 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     A[q + p + ne:q + p + ne + n, :n] = np.eye(n)
     A[q + p + ne + n:, :n] = -np.eye(n)
     b = np.concatenate([-h0, -g0, np.zeros(ne), d_up, -d_lo])
-    A = sp.csc_matrix(A)
+    A = _csc(A)
     cones = ([clarabel.ZeroConeT(q)] if q else []) + [clarabel.NonnegativeConeT(m - q)]
     settings = _settings()
     sol = clarabel.DefaultSolver(P, c, A, b, cones, settings).solve()
