@@ -18,6 +18,7 @@ from typing import Any, TextIO
 from problems import UnknownSuite
 
 from . import _manifest
+from ._history import thin_history
 from ._plan import HarnessArgumentError, RunSpec, plan_runs
 from ._pool import LocalPool
 from ._progress import Progress
@@ -134,6 +135,7 @@ def run_suite(
     start_method: str | None = None,
     progress: TextIO | None = sys.stderr,
     argv: Sequence[str] | None = None,
+    history_points: int | None = None,
 ) -> RunSummary:
     """Run a suite's (case x solver) runs and store one row per run.
 
@@ -156,6 +158,9 @@ def run_suite(
     executor, scheduler : ``"local"`` or ``"dask"`` with a scheduler address.
     modules : modules (names or .py paths) workers import first, e.g. to register solvers.
     progress : stream for the progress display (None: quiet).
+    history_points : store long histories thinned to about this many evaluations
+        (`harness._history.thin_history`: exact for best-so-far curves, first-hitting
+        counts rounded up by a bounded factor); None keeps every evaluation.
     """
     t0 = time.perf_counter()
     started = _manifest.now()
@@ -171,6 +176,8 @@ def run_suite(
         solver_specs = solver_names()
     if not (timeout >= 0):  # also catches NaN
         raise HarnessArgumentError(f"--timeout must be a number of seconds >= 0 (0 or inf: no limit), got {timeout}")
+    if history_points is not None and history_points < 2:
+        raise HarnessArgumentError(f"--history-points must be >= 2, got {history_points}")
     if jobs is not None and jobs < 1:
         raise HarnessArgumentError(f"--jobs must be >= 1, got {jobs}")
     if executor == "dask" and not scheduler:
@@ -197,6 +204,8 @@ def run_suite(
                     continue
                 sp = by_key.get(str(row.get("run_key")))
                 row["timeout_s"] = sp.timeout if sp is not None else float("nan")
+                if history_points and isinstance(row.get("history"), str):
+                    row["history"] = thin_history(row["history"], history_points)
                 store.write_run(row)
                 summary.executed += 1
                 summary.failed += row["status"] in ("error", "timeout")
@@ -214,6 +223,7 @@ def run_suite(
                 "end": _manifest.now(), "argv": list(argv) if argv is not None else sys.argv,
                 "planned": summary.planned, "executed": summary.executed, "skipped": summary.skipped,
                 "failed": summary.failed, "executor": executor, "jobs": jobs, "timeout": timeout,
+                "history_points": history_points,
                 **({"dask_workers": info["workers"]} if "workers" in info else {})})
     elif not store.parquet.exists() and store.exists():
         store.consolidate()

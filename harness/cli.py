@@ -67,6 +67,9 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--timeout", type=float, default=600.0,
                    help="per-run wall-clock limit, s (default 600; 0 or inf: none). Stored time-outs with a smaller "
                         "limit are run again")
+    r.add_argument("--history-points", type=int, default=None, metavar="N",
+                   help="store histories longer than N evaluations thinned to about N (campaigns; "
+                        "docs/harness.md, \"Histories\"); default: every evaluation")
     r.add_argument("--fresh", action="store_true", help="re-run runs already stored under the same key")
     r.add_argument("--retry-failed", action="store_true",
                    help="re-run every stored error and time-out row (failures of the infrastructure - a killed "
@@ -139,7 +142,7 @@ def _cmd_run(a: argparse.Namespace) -> int:
 
     summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
                         select=a.select,
-                        out=a.out, jobs=a.jobs, timeout=a.timeout, fresh=a.fresh, retry_failed=a.retry_failed,
+                        out=a.out, jobs=a.jobs, timeout=a.timeout, history_points=a.history_points, fresh=a.fresh, retry_failed=a.retry_failed,
                         executor=a.executor,
                         scheduler=a.scheduler, modules=a.modules, progress=None if a.quiet else sys.stderr,
                         argv=sys.argv)

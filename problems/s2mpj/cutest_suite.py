@@ -17,7 +17,7 @@ from .hs_all_suite import hs_reference
 __all__ = ["SUITE", "DEFAULT_SELECTION", "SOLVERS"]
 
 #: the committed campaign (docs/cutest.md says why this size)
-DEFAULT_SELECTION = "n<=5,m<=5,feasibility=0"
+DEFAULT_SELECTION = "n<=50,feasibility=0"
 SOLVERS = ("sqsd", "polak-ribiere", "scipy-cg", "scipy-bfgs", "scipy-lbfgsb", "dynamic-q",
            "dynamic-q-plus", "lfopc", "etopc",
            "scipy-slsqp", "scipy-trust-constr", "ipopt", "nlopt-mma", "nlopt-slsqp")
