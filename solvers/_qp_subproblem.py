@@ -16,11 +16,11 @@ Sl1QP).  Solved exactly by Clarabel (interior point; dual variables give the mul
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import clarabel
 import numpy as np
-import scipy.sparse as sp
 
 __all__ = ["ElasticQPResult", "l1_model", "solve_elastic_qp"]
 
@@ -53,6 +53,19 @@ def _hess_times(sigma, d: np.ndarray) -> np.ndarray:
     return sigma @ d if sigma.ndim == 2 else sigma * d
 
 
+@functools.cache
+def _identity_blocks(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Positions and values of the +-1 entries of the constraint matrix below: -t+ and +t- in
+    the equality rows, -s in the inequality rows, -I on the elastic rows, +I and -I on the box."""
+    ne = p + 2 * q
+    i_q, i_p, i_e, i_n = np.arange(q), np.arange(p), np.arange(ne), np.arange(n)
+    rows = np.r_[i_q, i_q, q + i_p, q + p + i_e, q + p + ne + i_n, q + p + ne + n + i_n]
+    cols = np.r_[n + p + i_q, n + p + q + i_q, n + i_p, n + i_e, i_n, i_n]
+    vals = np.r_[-np.ones(q), np.ones(q), -np.ones(p), -np.ones(ne), np.ones(n), -np.ones(n)]
+    return rows, cols, vals
+
+
+@functools.cache
 def _settings() -> clarabel.DefaultSettings:
     settings = clarabel.DefaultSettings()
     settings.verbose = False
@@ -61,14 +74,35 @@ def _settings() -> clarabel.DefaultSettings:
     return settings
 
 
-def _csc(dense: np.ndarray) -> sp.csc_matrix:
-    """The nonzeros of a dense matrix as CSC, built with NumPy (scipy's general converters
-    cost more than the interior-point solve at these sizes); same structure as
+@dataclass(frozen=True)
+class _CscView:
+    """The CSC arrays of a matrix, as Clarabel reads them (format, shape, data, indices,
+    indptr).  scipy.sparse's constructor validates and re-types the index arrays on every
+    call, which cost more than the interior-point solve of these small QPs; the arrays
+    here are built canonical (sorted, int64, no duplicates) by `_csc`, so nothing needs
+    checking.  `tests/solvers/test_dynamic_q_plus.py` checks the view against
+    ``scipy.sparse.csc_matrix``."""
+
+    shape: tuple[int, int]
+    data: np.ndarray
+    indices: np.ndarray
+    indptr: np.ndarray
+    format: str = "csc"
+    has_sorted_indices: bool = True
+    has_canonical_format: bool = True
+
+    @property
+    def nnz(self) -> int:
+        return int(self.data.size)
+
+
+def _csc(dense: np.ndarray) -> _CscView:
+    """The nonzeros of a dense matrix in CSC form, built with NumPy; the same arrays as
     ``scipy.sparse.csc_matrix(dense)``."""
     cols, rows = np.nonzero(dense.T)  # column-major: sorted by column, then row
     indptr = np.zeros(dense.shape[1] + 1, dtype=np.int64)
     np.cumsum(np.bincount(cols, minlength=dense.shape[1]), out=indptr[1:])
-    return sp.csc_matrix((dense.T[cols, rows], rows.astype(np.int64), indptr), shape=dense.shape)
+    return _CscView(dense.shape, np.ascontiguousarray(dense.T[cols, rows]), rows.astype(np.int64), indptr)
 
 
 def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
@@ -84,8 +118,9 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
         Pd[:n, :n] = np.triu(sig)
         P = _csc(Pd)
     else:
-        diag = np.broadcast_to(sig, (n,)).copy()
-        P = sp.csc_matrix((diag, np.arange(n), np.r_[np.arange(n + 1), np.full(ne, n)]), shape=(nv, nv))
+        diag = np.broadcast_to(sig, (n,)).astype(float)
+        P = _CscView((nv, nv), diag, np.arange(n, dtype=np.int64),
+                     np.r_[np.arange(n + 1), np.full(ne, n)].astype(np.int64))
     c = np.r_[gf, np.full(ne, mu)]
     # rows: equalities (ZeroCone), then inequalities, elastic >= 0, box (Nonnegative): A v + s = b.
     # Assembled dense (n <= a few hundred here) and converted once: scipy's sparse stacking costs
@@ -93,18 +128,13 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     m = q + p + ne + 2 * n
     A = np.zeros((m, nv))
     A[:q, :n] = Jh
-    A[:q, n + p:n + p + q] = -np.eye(q)
-    A[:q, n + p + q:] = np.eye(q)
     A[q:q + p, :n] = Jg
-    A[q:q + p, n:n + p] = -np.eye(p)
-    A[q + p:q + p + ne, n:] = -np.eye(ne)
-    A[q + p + ne:q + p + ne + n, :n] = np.eye(n)
-    A[q + p + ne + n:, :n] = -np.eye(n)
+    rows, cols, vals = _identity_blocks(n, p, q)
+    A[rows, cols] = vals
     b = np.concatenate([-h0, -g0, np.zeros(ne), d_up, -d_lo])
-    A = _csc(A)
+    A_csc = _csc(A)
     cones = ([clarabel.ZeroConeT(q)] if q else []) + [clarabel.NonnegativeConeT(m - q)]
-    settings = _settings()
-    sol = clarabel.DefaultSolver(P, c, A, b, cones, settings).solve()
+    sol = clarabel.DefaultSolver(P, c, A_csc, b, cones, _settings()).solve()
     v = np.asarray(sol.x)
     z = np.asarray(sol.z)
     # the elastic QP is always feasible and bounded: a stalled interior point (insufficient progress,

@@ -171,10 +171,27 @@ class DynamicQPlus(AbstractSolver):
         Bn = B - np.outer(Bs, Bs) / sBs + np.outer(r, r) / sr
         Bn = 0.5 * (Bn + Bn.T)
         # safeguard: eigenvalues within [sigma_min, sigma_max] (B stays positive definite)
+        if self._inside_bounds(Bn):
+            return Bn
         w, V = np.linalg.eigh(Bn)
         if w[0] < self.sigma_min or w[-1] > self.sigma_max:
             Bn = (V * np.clip(w, self.sigma_min, self.sigma_max)) @ V.T
         return Bn
+
+    def _inside_bounds(self, B: np.ndarray) -> bool:
+        """True when B's eigenvalues are surely inside [sigma_min, sigma_max], shown without an
+        eigendecomposition: B - (sigma_min + margin) I has a Cholesky factor, and the trace
+        (the sum of the then positive eigenvalues) is at most sigma_max.  The margin, 1e-10
+        of the trace, exceeds eigh's rounding, so whenever this says True, eigh would not clip
+        either; otherwise eigh decides (the result is the same, only cheaper)."""
+        tr = float(np.trace(B))
+        if not (tr <= self.sigma_max):
+            return False
+        try:
+            np.linalg.cholesky(B - (self.sigma_min + 1e-10 * tr) * np.eye(B.shape[0]))
+        except np.linalg.LinAlgError:
+            return False
+        return True
 
     def _restart_before_stop(self, restarted: bool, n_upd: int) -> bool:
         """[OWN] Restart the quasi-Newton matrix once instead of stopping.

@@ -88,3 +88,34 @@ def test_small_hs_sample_solved(pid):
 def test_bad_options_rejected():
     with pytest.raises(ValueError, match="dynamic-q-plus: eta"):
         DynamicQPlus(eta=1.5)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 10_000), st.integers(1, 8), st.integers(1, 8))
+def test_csc_view_equals_scipy(seed, m, n):
+    """The CSC arrays handed to Clarabel are exactly scipy's for the same dense matrix."""
+    import scipy.sparse as sp
+
+    from solvers._qp_subproblem import _csc
+
+    rng = np.random.default_rng(seed)
+    dense = rng.normal(size=(m, n)) * (rng.random((m, n)) < 0.5)
+    view, ref = _csc(dense), sp.csc_matrix(dense)
+    assert view.shape == ref.shape and view.nnz == ref.nnz
+    assert np.array_equal(view.indptr, ref.indptr) and np.array_equal(view.indices, ref.indices)
+    assert np.array_equal(view.data, ref.data)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 10_000), st.integers(1, 8), st.floats(-12, 10))
+def test_inside_bounds_agrees_with_eigh(seed, n, log_scale):
+    """The Cholesky test of the BFGS safeguard never skips a clipping eigh would do."""
+    rng = np.random.default_rng(seed)
+    Q = np.linalg.qr(rng.normal(size=(n, n)))[0]
+    w = 10.0 ** rng.uniform(log_scale - 2, log_scale + 2, n)
+    B = (Q * w) @ Q.T
+    B = 0.5 * (B + B.T)
+    solver = DynamicQPlus()
+    ev = np.linalg.eigvalsh(B)
+    if solver._inside_bounds(B):
+        assert ev[0] >= solver.sigma_min and ev[-1] <= solver.sigma_max
