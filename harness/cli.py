@@ -142,7 +142,8 @@ def _cmd_run(a: argparse.Namespace) -> int:
 
     summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
                         select=a.select,
-                        out=a.out, jobs=a.jobs, timeout=a.timeout, history_points=a.history_points, fresh=a.fresh, retry_failed=a.retry_failed,
+                        out=a.out, jobs=a.jobs, timeout=a.timeout, history_points=a.history_points, fresh=a.fresh,
+                        retry_failed=a.retry_failed,
                         executor=a.executor,
                         scheduler=a.scheduler, modules=a.modules, progress=None if a.quiet else sys.stderr,
                         argv=sys.argv)
