@@ -39,6 +39,30 @@ def _git(*args: str) -> str | None:
     return out.stdout.strip() if out.returncode == 0 else None
 
 
+def _cpu_model() -> str | None:
+    try:
+        with open("/proc/cpuinfo", encoding="ascii", errors="ignore") as fh:
+            for line in fh:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return None
+
+
+def _numpy_simd() -> list[str] | None:
+    """NumPy's SIMD loops in use on this CPU (e.g. X86_V3 = AVX2, X86_V4 = AVX-512).
+
+    They decide the last digits of NumPy-heavy evaluations (S2MPJ's problems): between an
+    AVX-512 and an AVX2 machine, rounding-sensitive runs can take other paths
+    (docs/harness.md, "Reproducibility across machines")."""
+    try:
+        from numpy._core._multiarray_umath import __cpu_dispatch__, __cpu_features__
+    except ImportError:  # a NumPy without the private module: not recorded
+        return None
+    return [k for k in __cpu_dispatch__ if __cpu_features__.get(k)]
+
+
 def environment() -> dict[str, Any]:
     """Versions, git state and machine of this process."""
     versions: dict[str, str | None] = {}
@@ -57,7 +81,8 @@ def environment() -> dict[str, Any]:
         "git_commit": commit,
         "git_dirty": None if status is None else bool(status),
         "machine": {"hostname": socket.gethostname(), "platform": platform.platform(),
-                    "processor": platform.processor() or platform.machine(), "cpu_count": os.cpu_count()},
+                    "processor": platform.processor() or platform.machine(), "cpu_count": os.cpu_count(),
+                    "cpu_model": _cpu_model(), "numpy_simd": _numpy_simd()},
         # OpenBLAS kernels decide the rounding of rounding-sensitive runs (harness/_blas.py)
         "blas": {v: os.environ.get(v) for v in ("OPENBLAS_CORETYPE", "OPENBLAS_NUM_THREADS")},
     }

@@ -70,10 +70,45 @@ def _legend(ax, n: int, outside: bool | None = None) -> None:
         ax.legend(fontsize="small", loc="lower right")
 
 
-def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
+MIN_SUBSET = 10  # smallest part of a campaign that gets its own profiles
+
+
+def campaign_parts(runs: pd.DataFrame) -> list[tuple[str, str, pd.DataFrame]]:
+    """(file suffix, title note, runs) for each part of a campaign that only some solvers handle.
+
+    The suffix names the part by the first (alphabetically) of the solvers that handle
+    exactly it, so file names stay the same when the selection grows.
+
+    Over a library, the unconstrained methods (SQSD, CG, BFGS) run on the unconstrained
+    problems only and L-BFGS-B on those with bounds: in a profile over every case they can
+    reach at most that fraction, which says nothing about them.  Each distinct set of cases a
+    solver handles (`not_applicable` rows excluded), other than the largest, gets its own
+    profiles over that set, with every solver that handles all of it.
+    """
+    labels = solver_labels(runs)
+    handled = runs["status"].astype(str) != "not_applicable"
+    sets = {lab: frozenset(runs.loc[handled & (labels == lab), "case_id"]) for lab in labels.unique()}
+    distinct = sorted(set(sets.values()), key=lambda c: (-len(c), sorted(c)))
+    parts = []
+    for cases in distinct[1:]:
+        if len(cases) < MIN_SUBSET:
+            continue
+        keep = [lab for lab, c in sets.items() if cases <= c]
+        defining = sorted(lab for lab, c in sets.items() if c == cases)
+        sub = runs[runs["case_id"].isin(cases) & labels.isin(keep)]
+        parts.append((f"_cases_of_{_slug(defining[0])}", f"the {len(cases)} cases {', '.join(defining)} handle",
+                      sub))
+    return parts
+
+
+def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, suffix: str = "",
+              note: str = "") -> list[pathlib.Path]:
     plt = _plt()
     paths = []
     n_cases = runs["case_id"].nunique()
+    if not suffix and suite in CAMPAIGN_SUITES:
+        for suf, nt, sub in campaign_parts(runs):
+            paths += _profiles(suite, sub, outdir, suf, nt)
     for metric, what in METRICS.items():
         grid, rho = performance_profile(runs, metric)
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
@@ -83,15 +118,21 @@ def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[path
         ax.set_xlabel(r"$\log_2 \tau$ (cost relative to the best solver)")
         ax.set_ylabel(r"fraction of problems solved, $\rho_s(\tau)$")
         ax.set_ylim(-0.02, 1.02)
-        ax.set_title(f"{suite}: performance profile over {what} ({n_cases} cases)")
+        ax.set_title(f"{suite}: performance profile over {what}\n({note or f'{n_cases} cases'})"
+                     if note else f"{suite}: performance profile over {what} ({n_cases} cases)")
         ax.grid(alpha=0.3)
         _legend(ax, len(rho.columns))
-        paths += _save(fig, outdir, f"profile_{metric.removesuffix('_s')}")
+        paths += _save(fig, outdir, f"profile_{metric.removesuffix('_s')}{suffix}")
     return paths
 
 
-def _data_profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
+def _data_profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, suffix: str = "",
+                   note: str = "") -> list[pathlib.Path]:
     plt = _plt()
+    paths: list[pathlib.Path] = []
+    if not suffix and suite in CAMPAIGN_SUITES:
+        for suf, nt, sub in campaign_parts(runs):
+            paths += _data_profiles(suite, sub, outdir, suf, nt)
     fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharey=True)
     prepared = prepare_histories(runs)
     for ax, tau in zip(axes.flat, DATA_TAUS):
@@ -108,10 +149,11 @@ def _data_profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list
         ax.grid(alpha=0.3)
     n_labels = len(prepared["labels"])
     _legend(axes.flat[1] if n_labels > 6 else axes.flat[0], n_labels)
-    fig.suptitle(f"{suite}: data profiles (Moré–Wild), feasible f ≤ f_L + τ (f(x0) − f_L)")
+    fig.suptitle(f"{suite}: data profiles (Moré–Wild), feasible f ≤ f_L + τ (f(x0) − f_L)"
+                 + (f"\n{note}" if note else ""))
     fig.tight_layout()
-    paths = _save(fig, outdir, "data_profile")
-    if np.isfinite(pd.to_numeric(runs["f_ref"], errors="coerce")).any():
+    paths += _save(fig, outdir, f"data_profile{suffix}")
+    if not suffix and np.isfinite(pd.to_numeric(runs["f_ref"], errors="coerce")).any():
         paths += _reference_data_profile(suite, runs, outdir)
     return paths
 

@@ -15,6 +15,8 @@ import time
 from collections.abc import Iterator, Sequence
 from typing import Any, TextIO
 
+import pandas as pd
+
 from problems import UnknownSuite
 
 from . import _manifest
@@ -117,6 +119,34 @@ def _execute(specs: list[RunSpec], executor: str, jobs: int, scheduler: str | No
         raise HarnessArgumentError(f"unknown executor {executor!r}; valid executors: local, dask")
 
 
+def plan_table(specs: list[RunSpec], todo: list[RunSpec], store: Store) -> pd.DataFrame:
+    """Per solver: planned runs, runs already stored under the current code, runs to do
+    (and how many of them replace a stored row of the same case and solver: from other code
+    or settings, a time-out under a smaller limit, or any with ``fresh``), and an estimate of
+    their run time: the stored wall time of the same case and solver where there is one,
+    else the solver's mean stored wall time per run (the mean, not the median: time-outs
+    make the distribution heavy-tailed).  Sums of run times; divide by the workers for the
+    wall time.  Not-applicable pairs count as done.
+    """
+    runs = store.load() if store.exists() else pd.DataFrame(columns=["case_id", "solver", "wall_time_s"])
+    wall = pd.to_numeric(runs["wall_time_s"], errors="coerce")
+    last = dict(zip(zip(runs["case_id"], runs["solver"]), wall))
+    mean = wall.groupby(runs["solver"]).mean().to_dict()
+    todo_keys = {sp.run_key for sp in todo}
+    rows = []
+    for solver in dict.fromkeys(sp.solver for sp in specs):
+        mine = [sp for sp in specs if sp.solver == solver]
+        pending = [sp for sp in mine if sp.run_key in todo_keys and sp.not_applicable is None]
+        stale = [sp for sp in pending if (sp.case_id, solver) in last]
+        est = sum(last.get((sp.case_id, solver), mean.get(solver, float("nan"))) for sp in pending)
+        rows.append({"solver": solver, "planned": len(mine), "done": len(mine) - len(pending),
+                     "to run": len(pending), "replace a stored row": len(stale),
+                     "estimated run time [s]": round(float(est), 1)})
+    table = pd.DataFrame(rows)
+    total = {"solver": "all", **{c: table[c].sum() for c in table.columns if c != "solver"}}
+    return pd.concat([table, pd.DataFrame([total])], ignore_index=True)
+
+
 def run_suite(
     suite: str | None = None,
     *,
@@ -136,7 +166,8 @@ def run_suite(
     progress: TextIO | None = sys.stderr,
     argv: Sequence[str] | None = None,
     history_points: int | None = None,
-) -> RunSummary:
+    dry_run: bool = False,
+) -> RunSummary | pd.DataFrame:
     """Run a suite's (case x solver) runs and store one row per run.
 
     Parameters
@@ -158,6 +189,7 @@ def run_suite(
     executor, scheduler : ``"local"`` or ``"dask"`` with a scheduler address.
     modules : modules (names or .py paths) workers import first, e.g. to register solvers.
     progress : stream for the progress display (None: quiet).
+    dry_run : plan only: return `plan_table` (what a run would do, per solver) and run nothing.
     history_points : store long histories thinned to about this many evaluations
         (`harness._history.thin_history`: exact for best-so-far curves, first-hitting
         counts rounded up by a bounded factor); None keeps every evaluation.
@@ -190,6 +222,8 @@ def run_suite(
     stored = set() if fresh else store.stored_keys()
     again = set() if fresh or not stored else retry_keys(store.load(), timeout, retry_failed) & stored
     todo = [sp for sp in specs if sp.run_key not in stored or sp.run_key in again]
+    if dry_run:
+        return plan_table(specs, todo, store)
     by_key = {sp.run_key: sp for sp in todo}
     summary = RunSummary(ref.name, len(specs), len(specs) - len(todo), 0, 0, 0, store.parquet, 0.0,
                          retried=sum(sp.run_key in again for sp in todo))

@@ -71,6 +71,9 @@ def _parser() -> argparse.ArgumentParser:
                    help="store histories longer than N evaluations thinned to about N (campaigns; "
                         "docs/harness.md, \"Histories\"); default: every evaluation")
     r.add_argument("--fresh", action="store_true", help="re-run runs already stored under the same key")
+    r.add_argument("--dry-run", action="store_true",
+                   help="plan only: per solver, the runs done and to run (and how many replace a stored "
+                        "row), with a run-time estimate")
     r.add_argument("--retry-failed", action="store_true",
                    help="re-run every stored error and time-out row (failures of the infrastructure - a killed "
                         "worker, a lost Dask worker, out of memory - are re-run without it)")
@@ -138,14 +141,20 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _cmd_run(a: argparse.Namespace) -> int:
-    from ._runner import run_suite
+    from ._runner import RunSummary, run_suite
 
     summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
                         select=a.select,
-                        out=a.out, jobs=a.jobs, timeout=a.timeout, history_points=a.history_points, fresh=a.fresh, retry_failed=a.retry_failed,
+                        out=a.out, jobs=a.jobs, timeout=a.timeout, history_points=a.history_points, fresh=a.fresh,
+                        retry_failed=a.retry_failed, dry_run=a.dry_run,
                         executor=a.executor,
                         scheduler=a.scheduler, modules=a.modules, progress=None if a.quiet else sys.stderr,
                         argv=sys.argv)
+    if not isinstance(summary, RunSummary):  # --dry-run: the plan table
+        print(summary.to_string(index=False))
+        print("\nestimated run time: stored wall times of the same runs where there are any, else the solver's "
+              "mean; divide the sum by the workers (--jobs) for the wall time. Nothing was run.")
+        return 0
     print(summary)
     if not a.no_table:
         _tables_after_run(a)

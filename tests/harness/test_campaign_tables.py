@@ -96,3 +96,30 @@ def test_log_ratio_profile(tmp_path):
     runs = _runs().replace({"s1": "dynamic-q", "s2": "ipopt"})
     paths = plot("cutest", "log-ratio", out=tmp_path, runs=runs)
     assert any(p.name == "log_ratio_dynamic-q_vs_ipopt.png" for p in paths)
+
+
+def test_campaign_parts_profile_each_solver_on_the_cases_it_handles(tmp_path):
+    """A solver that handles only part of a library gets profiles over that part, beside everyone
+    who handles all of it; the full-library profile is drawn as before."""
+    from harness._plots import MIN_SUBSET, campaign_parts
+
+    base = {"suite": "cutest", "settings": "{}", "settings_hash": "h", "overrides": "", "n": 2,
+            "history": "[[1,3.0,0.0],[2,1.0,0.0]]", "wall_time_s": 0.1, "message": "", "nit": 1, "nf": 2, "ng": 2,
+            "f": 1.0, "f_ref": 1.0, "max_violation": 0.0, "nfg": 2, "x": [0.0, 0.0]}
+    rows = []
+    for i in range(20):
+        for solver in ("general", "unconstrained-only"):
+            na = solver == "unconstrained-only" and i >= MIN_SUBSET + 2  # handles the first 12 cases only
+            rows.append({**base, "case_id": f"P{i}/n=2/x0", "problem": f"P{i}", "solver": solver,
+                         "status": "not_applicable" if na else "converged", "success": not na})
+    runs = pd.DataFrame(rows)
+    parts = campaign_parts(runs)
+    assert [p[0] for p in parts] == ["_cases_of_unconstrained-only"]
+    _, note, sub = parts[0]
+    assert sub["case_id"].nunique() == MIN_SUBSET + 2 and set(sub["solver"]) == {"general", "unconstrained-only"}
+    assert "12 cases unconstrained-only handle" in note
+    names = {p.name for p in plot("cutest", "profile", out=tmp_path, runs=runs)}
+    assert {"profile_nfg.png", "profile_nfg_cases_of_unconstrained-only.png"} <= names
+    few = runs[(runs["solver"] == "general") | runs["case_id"].isin([f"P{i}/n=2/x0" for i in range(3)])]
+    few = few[~((few["solver"] == "unconstrained-only") & (few["status"] == "not_applicable"))]
+    assert campaign_parts(few) == []  # a part of 3 cases is below MIN_SUBSET: no separate profile
