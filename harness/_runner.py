@@ -147,6 +147,44 @@ def plan_table(specs: list[RunSpec], todo: list[RunSpec], store: Store) -> pd.Da
     return pd.concat([table, pd.DataFrame([total])], ignore_index=True)
 
 
+def _plan(suite: str | None, suite_file: str | os.PathLike[str] | None, solvers: Sequence[str] | None,
+          problems: Sequence[str] | None, select: str | None, timeout: float,
+          modules: Sequence[str]) -> tuple[SuiteRef, list[RunSpec]]:
+    """The suite and every run it plans (keys computed), as `run_suite` would run them."""
+    ref = resolve_suite(suite, suite_file)
+    s = select_suite(ref.load(), select)
+    solver_specs = list(solvers) if solvers else list(s.solvers)
+    every_solver = not solver_specs  # a suite without defaults: every registered solver that handles it
+    if every_solver:
+        from solvers import solver_names
+
+        solver_specs = solver_names()
+    specs = plan_runs(ref, s, solver_specs, list(problems) if problems else None, timeout, tuple(modules))
+    if every_solver:  # only the solvers that handle each problem; a bad plan would be ours, not the user's
+        specs = [sp for sp in specs if sp.not_applicable is None and sp.plan_error is None]
+    return ref, specs
+
+
+def prune_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] | None = None,
+                solvers: Sequence[str] | None = None, select: str | None = None,
+                out: str | os.PathLike[str] = "results", modules: Sequence[str] = ()) -> dict[str, int]:
+    """Remove the stored rows a run of the suite would not produce now; rows removed per solver.
+
+    Those are rows from older code or settings (their key is no longer planned) and rows of
+    cases or solvers outside the selection.  After a change of a solver or of a campaign's
+    selection, the tables then show the current code only.  The previous generation stays
+    in ``runs.prev.parquet`` (`harness repair` restores it); the committed store is in git.
+    """
+    if modules:
+        import_modules(tuple(modules))
+    ref, specs = _plan(suite, suite_file, solvers, None, select, 0.0, modules)
+    store = Store(out, ref.name)
+    if not store.exists():
+        return {}
+    removed = store.keep_only({sp.run_key for sp in specs})
+    return removed
+
+
 def run_suite(
     suite: str | None = None,
     *,
@@ -198,14 +236,6 @@ def run_suite(
     started = _manifest.now()
     if modules:
         import_modules(tuple(modules))
-    ref = resolve_suite(suite, suite_file)
-    s = select_suite(ref.load(), select)
-    solver_specs = list(solvers) if solvers else list(s.solvers)
-    every_solver = not solver_specs  # a suite without defaults: every registered solver that handles it
-    if every_solver:
-        from solvers import solver_names
-
-        solver_specs = solver_names()
     if not (timeout >= 0):  # also catches NaN
         raise HarnessArgumentError(f"--timeout must be a number of seconds >= 0 (0 or inf: no limit), got {timeout}")
     if history_points is not None and history_points < 2:
@@ -214,9 +244,7 @@ def run_suite(
         raise HarnessArgumentError(f"--jobs must be >= 1, got {jobs}")
     if executor == "dask" and not scheduler:
         raise HarnessArgumentError("--executor dask needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
-    specs = plan_runs(ref, s, solver_specs, list(problems) if problems else None, timeout, tuple(modules))
-    if every_solver:  # only the solvers that handle each problem; a bad plan would be ours, not the user's
-        specs = [sp for sp in specs if sp.not_applicable is None and sp.plan_error is None]
+    ref, specs = _plan(suite, suite_file, solvers, problems, select, timeout, modules)
     store = Store(out, ref.name)
     _check_writable(store.root)
     stored = set() if fresh else store.stored_keys()

@@ -201,21 +201,39 @@ class Store:
             if not files and self.parquet.exists():
                 return len(self._read(["run_key"]))
             df = self._merged(files)
-            buf = df.to_parquet(index=False, compression="zstd")
-            if self.parquet.exists():  # keep the generation being replaced (a hard link: no copy)
-                tmp = self.root / f".{self.previous.name}.tmp"
-                with contextlib.suppress(OSError):
-                    tmp.unlink()
-                try:
-                    os.link(self.parquet, tmp)
-                except OSError:  # no hard links here (some network file systems): copy
-                    _atomic_write_bytes(tmp, self.parquet.read_bytes())
-                os.replace(tmp, self.previous)
-            _atomic_write_bytes(self.parquet, buf)
-            for p in files:
-                with contextlib.suppress(OSError):
-                    p.unlink()
+            self._replace(df, files)
             return len(df)
+
+    def _replace(self, df: pd.DataFrame, files: list[pathlib.Path]) -> None:
+        """Write ``df`` as runs.parquet atomically, keeping the replaced generation, and delete
+        the merged pending files (the caller holds the lock)."""
+        buf = df.to_parquet(index=False, compression="zstd")
+        if self.parquet.exists():  # keep the generation being replaced (a hard link: no copy)
+            tmp = self.root / f".{self.previous.name}.tmp"
+            with contextlib.suppress(OSError):
+                tmp.unlink()
+            try:
+                os.link(self.parquet, tmp)
+            except OSError:  # no hard links here (some network file systems): copy
+                _atomic_write_bytes(tmp, self.parquet.read_bytes())
+            os.replace(tmp, self.previous)
+        _atomic_write_bytes(self.parquet, buf)
+        for p in files:
+            with contextlib.suppress(OSError):
+                p.unlink()
+
+    def keep_only(self, keys: set[str]) -> dict[str, int]:
+        """Keep the rows whose run key is in ``keys`` (pending run files merged); rows removed
+        per solver.  Atomic like `consolidate`, which keeps the replaced generation."""
+        with _locked(self.root / ".lock"):
+            files = self._pending_files()
+            df = self._merged(files)
+            drop = ~df["run_key"].astype(str).isin(keys)
+            removed = {str(k): int(v) for k, v in df.loc[drop, "solver"].value_counts().items()}
+            if not drop.any() and not files:
+                return removed
+            self._replace(df[~drop], files)
+            return removed
 
     # ------------------------------------------------------------------ reading
     def _merged(self, files: list[pathlib.Path]) -> pd.DataFrame:

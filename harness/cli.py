@@ -113,6 +113,13 @@ def _parser() -> argparse.ArgumentParser:
     rr.add_argument("--suite", required=True)
     rr.add_argument("--out", default="results")
 
+    pr = sub.add_parser("prune", help="remove stored rows a run would not produce now (older code or "
+                                      "settings, cases or solvers outside the selection)")
+    pr.add_argument("--suite", required=True)
+    pr.add_argument("--select", help="the selection the store should hold (suites cutest, hs-all)")
+    pr.add_argument("--solvers", help="comma-separated solver ids to keep (default: the suite's)")
+    pr.add_argument("--out", default="results")
+
     cp = sub.add_parser("compare", help="per-run changes between two result directories")
     cp.add_argument("old")
     cp.add_argument("new")
@@ -248,6 +255,17 @@ def _cmd_report(a: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_prune(a: argparse.Namespace) -> int:
+    from ._runner import prune_suite
+
+    removed = prune_suite(a.suite, solvers=_csv(a.solvers), select=a.select, out=a.out)
+    total = sum(removed.values())
+    detail = ", ".join(f"{k} {v}" for k, v in sorted(removed.items()))
+    print(f"{a.suite}: removed {total} stored rows" + (f" ({detail})" if detail else "")
+          + "; the previous generation is runs.prev.parquet")
+    return 0
+
+
 def _cmd_repair(a: argparse.Namespace) -> int:
     from ._store import Store
 
@@ -299,7 +317,7 @@ def _cmd_baseline(a: argparse.Namespace) -> int:
 
 COMMANDS = {"run": _cmd_run, "table": _cmd_table, "list": _cmd_list, "plot": _cmd_plot,
             "report": _cmd_report, "compare": _cmd_compare, "baseline": _cmd_baseline,
-            "export": _cmd_export, "repair": _cmd_repair, "reference": _cmd_reference}
+            "export": _cmd_export, "repair": _cmd_repair, "prune": _cmd_prune, "reference": _cmd_reference}
 
 
 def _terminate_as_interrupt() -> object:

@@ -210,3 +210,19 @@ def test_dry_run_plans_without_running(tiny_file, tmp_path, capsys):
     assert again["to run"] == 4 and again["replace a stored row"] == 4 and again["estimated run time [s]"] > 0
     assert main(["run", "--suite-file", str(tiny_file), "--out", str(tmp_path), "--dry-run"]) == 0
     assert "Nothing was run" in capsys.readouterr().out
+
+
+def test_prune_keeps_exactly_what_a_run_would_produce(tiny_file, tmp_path):
+    """Rows of other code or settings (here: a run with other options) go; current ones stay."""
+    from harness._runner import prune_suite
+
+    run(tiny_file, tmp_path)
+    before = harness.load_results("tiny", tmp_path)
+    run(tiny_file, tmp_path, solvers=["sqsd[rho=0.5]"])  # a stored variant the default plan does not contain
+    assert len(harness.load_results("tiny", tmp_path)) > len(before)
+    removed = prune_suite(suite_file=tiny_file, out=tmp_path)
+    assert removed and set(removed) == {"sqsd"}
+    after = harness.load_results("tiny", tmp_path)
+    assert sorted(after["run_key"]) == sorted(before["run_key"])
+    assert prune_suite(suite_file=tiny_file, out=tmp_path) == {}  # nothing left to remove
+    assert run(tiny_file, tmp_path).executed == 0  # still a complete store for resume
