@@ -15,7 +15,8 @@ import importlib
 from typing import Any
 
 _EXPORTS = {
-    "run_suite": "._runner", "RunSummary": "._runner", "load_results": "._api", "render_tables": "._api",
+    "run_suite": "._runner", "plan_suite": "._runner", "prune_suite": "._runner", "RunSummary": "._runner",
+    "load_results": "._api", "render_tables": "._api",
     "NoResults": "._api", "HarnessArgumentError": "._plan", "plot": "._plots", "write_report": "._report",
     "compare_dirs": "._compare",
 }

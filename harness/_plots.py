@@ -106,9 +106,6 @@ def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, suffix: str 
     plt = _plt()
     paths = []
     n_cases = runs["case_id"].nunique()
-    if not suffix and suite in CAMPAIGN_SUITES:
-        for suf, nt, sub in campaign_parts(runs):
-            paths += _profiles(suite, sub, outdir, suf, nt)
     for metric, what in METRICS.items():
         grid, rho = performance_profile(runs, metric)
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
@@ -118,8 +115,8 @@ def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, suffix: str 
         ax.set_xlabel(r"$\log_2 \tau$ (cost relative to the best solver)")
         ax.set_ylabel(r"fraction of problems solved, $\rho_s(\tau)$")
         ax.set_ylim(-0.02, 1.02)
-        ax.set_title(f"{suite}: performance profile over {what}\n({note or f'{n_cases} cases'})"
-                     if note else f"{suite}: performance profile over {what} ({n_cases} cases)")
+        ax.set_title(f"{suite}: performance profile over {what}\n({note})" if note
+                     else f"{suite}: performance profile over {what} ({n_cases} cases)")
         ax.grid(alpha=0.3)
         _legend(ax, len(rho.columns))
         paths += _save(fig, outdir, f"profile_{metric.removesuffix('_s')}{suffix}")
@@ -130,9 +127,6 @@ def _data_profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, suffix:
                    note: str = "") -> list[pathlib.Path]:
     plt = _plt()
     paths: list[pathlib.Path] = []
-    if not suffix and suite in CAMPAIGN_SUITES:
-        for suf, nt, sub in campaign_parts(runs):
-            paths += _data_profiles(suite, sub, outdir, suf, nt)
     fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharey=True)
     prepared = prepare_histories(runs)
     for ax, tau in zip(axes.flat, DATA_TAUS):
@@ -274,10 +268,12 @@ def plot(suite: str, kind: str, out: str | os.PathLike[str] = "results", problem
     outdir = pathlib.Path(out) / suite / "figures"
     if kind == "log-ratio":
         return _log_ratios(suite, runs, outdir)
-    if kind == "profile":
-        return _profiles(suite, runs, outdir)
-    if kind == "data-profile":
-        return _data_profiles(suite, runs, outdir)
+    if kind in ("profile", "data-profile"):
+        draw = _profiles if kind == "profile" else _data_profiles
+        paths = draw(suite, runs, outdir)
+        for suffix, note, part in campaign_parts(runs) if suite in CAMPAIGN_SUITES else ():
+            paths += draw(suite, part, outdir, suffix, note)
+        return paths
     if kind == "history":
         return _histories(suite, runs, outdir, problem, progress)
     from .figures import thesis_figures

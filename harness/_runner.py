@@ -165,6 +165,26 @@ def _plan(suite: str | None, suite_file: str | os.PathLike[str] | None, solvers:
     return ref, specs
 
 
+def _todo(specs: list[RunSpec], store: Store, timeout: float, fresh: bool,
+          retry_failed: bool) -> tuple[list[RunSpec], set[str]]:
+    """The planned runs not stored yet (or to run again), and the stored keys run again."""
+    stored = set() if fresh else store.stored_keys()
+    again = set() if fresh or not stored else retry_keys(store.load(), timeout, retry_failed) & stored
+    return [sp for sp in specs if sp.run_key not in stored or sp.run_key in again], again
+
+
+def plan_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] | None = None,
+               solvers: Sequence[str] | None = None, problems: Sequence[str] | None = None,
+               select: str | None = None, out: str | os.PathLike[str] = "results", timeout: float = 600.0,
+               fresh: bool = False, retry_failed: bool = False, modules: Sequence[str] = ()) -> pd.DataFrame:
+    """What `run_suite` with the same arguments would do, per solver (`plan_table`); runs nothing."""
+    if modules:
+        import_modules(tuple(modules))
+    ref, specs = _plan(suite, suite_file, solvers, problems, select, timeout, modules)
+    store = Store(out, ref.name)
+    return plan_table(specs, _todo(specs, store, timeout, fresh, retry_failed)[0], store)
+
+
 def prune_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] | None = None,
                 solvers: Sequence[str] | None = None, select: str | None = None,
                 out: str | os.PathLike[str] = "results", modules: Sequence[str] = ()) -> dict[str, int]:
@@ -181,8 +201,7 @@ def prune_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] 
     store = Store(out, ref.name)
     if not store.exists():
         return {}
-    removed = store.keep_only({sp.run_key for sp in specs})
-    return removed
+    return store.keep_only({sp.run_key for sp in specs})
 
 
 def run_suite(
@@ -204,8 +223,7 @@ def run_suite(
     progress: TextIO | None = sys.stderr,
     argv: Sequence[str] | None = None,
     history_points: int | None = None,
-    dry_run: bool = False,
-) -> RunSummary | pd.DataFrame:
+) -> RunSummary:
     """Run a suite's (case x solver) runs and store one row per run.
 
     Parameters
@@ -227,7 +245,6 @@ def run_suite(
     executor, scheduler : ``"local"`` or ``"dask"`` with a scheduler address.
     modules : modules (names or .py paths) workers import first, e.g. to register solvers.
     progress : stream for the progress display (None: quiet).
-    dry_run : plan only: return `plan_table` (what a run would do, per solver) and run nothing.
     history_points : store long histories thinned to about this many evaluations
         (`harness._history.thin_history`: exact for best-so-far curves, first-hitting
         counts rounded up by a bounded factor); None keeps every evaluation.
@@ -247,11 +264,7 @@ def run_suite(
     ref, specs = _plan(suite, suite_file, solvers, problems, select, timeout, modules)
     store = Store(out, ref.name)
     _check_writable(store.root)
-    stored = set() if fresh else store.stored_keys()
-    again = set() if fresh or not stored else retry_keys(store.load(), timeout, retry_failed) & stored
-    todo = [sp for sp in specs if sp.run_key not in stored or sp.run_key in again]
-    if dry_run:
-        return plan_table(specs, todo, store)
+    todo, again = _todo(specs, store, timeout, fresh, retry_failed)
     by_key = {sp.run_key: sp for sp in todo}
     summary = RunSummary(ref.name, len(specs), len(specs) - len(todo), 0, 0, 0, store.parquet, 0.0,
                          retried=sum(sp.run_key in again for sp in todo))

@@ -148,20 +148,23 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _cmd_run(a: argparse.Namespace) -> int:
-    from ._runner import RunSummary, run_suite
+    from ._runner import plan_suite, run_suite
 
-    summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
-                        select=a.select,
-                        out=a.out, jobs=a.jobs, timeout=a.timeout, history_points=a.history_points, fresh=a.fresh,
-                        retry_failed=a.retry_failed, dry_run=a.dry_run,
-                        executor=a.executor,
-                        scheduler=a.scheduler, modules=a.modules, progress=None if a.quiet else sys.stderr,
-                        argv=sys.argv)
-    if not isinstance(summary, RunSummary):  # --dry-run: the plan table
-        print(summary.to_string(index=False))
+    if a.dry_run:
+        plan = plan_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
+                          select=a.select, out=a.out, timeout=a.timeout, fresh=a.fresh,
+                          retry_failed=a.retry_failed, modules=a.modules)
+        print(plan.to_string(index=False))
         print("\nestimated run time: stored wall times of the same runs where there are any, else the solver's "
               "mean; divide the sum by the workers (--jobs) for the wall time. Nothing was run.")
         return 0
+    summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
+                        select=a.select,
+                        out=a.out, jobs=a.jobs, timeout=a.timeout, history_points=a.history_points, fresh=a.fresh,
+                        retry_failed=a.retry_failed,
+                        executor=a.executor,
+                        scheduler=a.scheduler, modules=a.modules, progress=None if a.quiet else sys.stderr,
+                        argv=sys.argv)
     print(summary)
     if not a.no_table:
         _tables_after_run(a)

@@ -198,15 +198,20 @@ def test_git_dirty_reflects_the_code_not_the_results(tmp_path, monkeypatch):
 
 def test_dry_run_plans_without_running(tiny_file, tmp_path, capsys):
     """--dry-run says per solver what a run would do and runs nothing; after a run nothing is left."""
-    plan = run(tiny_file, tmp_path, dry_run=True)
+    from harness._runner import plan_suite
+
+    def dry(**kw):
+        return plan_suite(suite_file=tiny_file, out=tmp_path, **kw)
+
+    plan = dry()
     assert not Store(tmp_path, "tiny").exists()  # nothing ran, nothing was stored
     total = plan.set_index("solver").loc["all"]
     counts = (total["planned"], total["done"], total["to run"], total["replace a stored row"])
     assert counts == (5, 1, 4, 0)  # the not-applicable pair counts as done
     run(tiny_file, tmp_path)
-    after = run(tiny_file, tmp_path, dry_run=True).set_index("solver").loc["all"]
+    after = dry().set_index("solver").loc["all"]
     assert (after["done"], after["to run"]) == (5, 0) and after["estimated run time [s]"] == 0
-    again = run(tiny_file, tmp_path, dry_run=True, fresh=True).set_index("solver").loc["all"]
+    again = dry(fresh=True).set_index("solver").loc["all"]
     assert again["to run"] == 4 and again["replace a stored row"] == 4 and again["estimated run time [s]"] > 0
     assert main(["run", "--suite-file", str(tiny_file), "--out", str(tmp_path), "--dry-run"]) == 0
     assert "Nothing was run" in capsys.readouterr().out
