@@ -129,10 +129,12 @@ def _parser() -> argparse.ArgumentParser:
                     help="E^r growing by more than this factor (above 1e-12) is a regression (default: off)")
     cp.add_argument("--all", action="store_true", help="list unchanged runs too")
 
-    ex = sub.add_parser("export", help="write a suite's runs as an OptiProfiler HDF5 archive (docs/cutest.md)")
+    ex = sub.add_parser("export", help="write a suite's runs for OptiProfiler: an HDF5 archive, or an experiment "
+                        "directory its benchmark(load=...) draws profiles from (docs/cutest.md)")
     ex.add_argument("--suite", required=True)
     ex.add_argument("--out", default="results")
-    ex.add_argument("--to", required=True, help="path of the .h5 archive to write")
+    ex.add_argument("--to", required=True, help="a path ending in .h5: the archive alone; otherwise a directory "
+                    "in OptiProfiler's experiment layout")
 
     rf = sub.add_parser("reference", help="compute and store what a suite's tables read from exact models "
                         "(rpr2, rpr3; docs/harness.md)")

@@ -105,6 +105,65 @@ def _csc(dense: np.ndarray) -> _CscView:
     return _CscView(dense.shape, np.ascontiguousarray(dense.T[cols, rows]), rows.astype(np.int64), indptr)
 
 
+@functools.cache
+def _upper_pattern(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Row and column indices of the upper triangle of an n x n matrix in CSC order (by
+    column, then row)."""
+    cols, rows = np.nonzero(np.triu(np.ones((n, n))).T)
+    return rows.astype(np.int64), cols.astype(np.int64)
+
+
+def _hessian_csc(sig: np.ndarray, n: int, nv: int) -> _CscView:
+    """The upper triangle of the n x n model Hessian ``sig`` in the top-left of an nv x nv
+    matrix, in CSC form: the same arrays as ``_csc`` of the dense embedding (exact zeros
+    dropped), from cached index arrays instead of a dense nv x nv scan."""
+    rows, cols = _upper_pattern(n)
+    vals = sig[rows, cols]
+    keep = vals != 0.0
+    if not keep.all():
+        rows, cols, vals = rows[keep], cols[keep], vals[keep]
+    indptr = np.zeros(nv + 1, dtype=np.int64)
+    np.cumsum(np.bincount(cols, minlength=nv), out=indptr[1:])
+    return _CscView((nv, nv), vals, rows, indptr)
+
+
+@functools.cache
+def _constraint_pattern(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
+    """Fixed parts of the constraint matrix's CSC form (see `solve_elastic_qp`).
+
+    Column j < n holds, by row: the q equality and p inequality Jacobian entries, then the
+    box rows +1 and -1; the template's row indices are ``rows`` (n, q + p + 2).  The
+    elastic columns hold only +-1 entries: their data, row indices and counts are fixed."""
+    ne = p + 2 * q
+    m = q + p + ne + 2 * n
+    box = q + p + ne
+    rows = np.empty((n, q + p + 2), dtype=np.int64)
+    rows[:, :q + p] = np.arange(q + p)
+    rows[:, q + p] = box + np.arange(n)
+    rows[:, q + p + 1] = box + n + np.arange(n)
+    A = np.zeros((m, n + ne))
+    r, c, v = _identity_blocks(n, p, q)
+    A[r, c] = v
+    el = _csc(A[:, n:])
+    return rows, el.data, el.indices, np.diff(el.indptr), m
+
+
+def _constraint_csc(Jg: np.ndarray, Jh: np.ndarray, n: int, p: int, q: int) -> _CscView:
+    """The constraint matrix of `solve_elastic_qp` in CSC form: the same arrays as ``_csc``
+    of its dense assembly (exact zeros dropped), from cached index arrays."""
+    rows, el_data, el_rows, el_counts, m = _constraint_pattern(n, p, q)
+    W = np.empty((n, q + p + 2))
+    W[:, :q] = Jh.T
+    W[:, q:q + p] = Jg.T
+    W[:, q + p] = 1.0
+    W[:, q + p + 1] = -1.0
+    keep = W != 0.0
+    indptr = np.zeros(n + el_counts.size + 1, dtype=np.int64)
+    np.cumsum(np.concatenate((keep.sum(axis=1), el_counts)), out=indptr[1:])
+    return _CscView((m, n + el_counts.size), np.concatenate((W[keep], el_data)),
+                    np.concatenate((rows[keep], el_rows)), indptr)
+
+
 def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
                      Jh: np.ndarray, d_lo: np.ndarray, d_up: np.ndarray, mu: float) -> ElasticQPResult:
     """Solve the elastic QP above (box ``d_lo <= d <= d_up``; ``sigma`` a positive scalar,
@@ -114,25 +173,18 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     ne = p + 2 * q  # elastic variables s, t+, t-
     sig = np.asarray(sigma, dtype=float)
     if sig.ndim == 2:  # full (quasi-Newton) Hessian: Clarabel reads the upper triangle
-        Pd = np.zeros((nv, nv))
-        Pd[:n, :n] = np.triu(sig)
-        P = _csc(Pd)
+        P = _hessian_csc(sig, n, nv)
     else:
         diag = np.broadcast_to(sig, (n,)).astype(float)
         P = _CscView((nv, nv), diag, np.arange(n, dtype=np.int64),
                      np.r_[np.arange(n + 1), np.full(ne, n)].astype(np.int64))
-    c = np.r_[gf, np.full(ne, mu)]
+    c = np.concatenate((gf, np.full(ne, mu)))
     # rows: equalities (ZeroCone), then inequalities, elastic >= 0, box (Nonnegative): A v + s = b.
-    # Assembled dense (n <= a few hundred here) and converted once: scipy's sparse stacking costs
-    # more than the interior-point solve itself at these sizes.
-    m = q + p + ne + 2 * n
-    A = np.zeros((m, nv))
-    A[:q, :n] = Jh
-    A[q:q + p, :n] = Jg
-    rows, cols, vals = _identity_blocks(n, p, q)
-    A[rows, cols] = vals
+    # Built in CSC form from cached index arrays: scipy's sparse stacking, and even a dense
+    # assembly scanned for its nonzeros, cost more than the interior-point solve at these sizes.
+    A_csc = _constraint_csc(Jg, Jh, n, p, q)
+    m = A_csc.shape[0]
     b = np.concatenate([-h0, -g0, np.zeros(ne), d_up, -d_lo])
-    A_csc = _csc(A)
     cones = ([clarabel.ZeroConeT(q)] if q else []) + [clarabel.NonnegativeConeT(m - q)]
     sol = clarabel.DefaultSolver(P, c, A_csc, b, cones, _settings()).solve()
     v = np.asarray(sol.x)

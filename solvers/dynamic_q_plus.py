@@ -220,8 +220,10 @@ class DynamicQPlus(AbstractSolver):
         sh = 1.0 / np.maximum(np.linalg.norm(ev0["eq_jac"], axis=1), 1.0)
 
         def scaled(e: dict[str, Any]) -> dict[str, Any]:
-            return {"f": sf * e["f"], "g": sf * e["g"], "ineq": sg * e["ineq"], "ineq_jac": sg[:, None] * e["ineq_jac"],
-                    "eq": sh * e["eq"], "eq_jac": sh[:, None] * e["eq_jac"], "raw": e}
+            out = {"f": sf * e["f"], "g": sf * e["g"], "ineq": sg * e["ineq"], "ineq_jac": sg[:, None] * e["ineq_jac"],
+                   "eq": sh * e["eq"], "eq_jac": sh[:, None] * e["eq_jac"], "raw": e}
+            out["l1"] = _l1_infeas(out)  # the merit's infeasibility, used several times per point
+            return out
 
         ev = scaled(ev0)
         scale_x = max(1.0, float(np.max(np.abs(x), initial=0.0)))
@@ -269,12 +271,12 @@ class DynamicQPlus(AbstractSolver):
                 dd = float(rc.d @ rc.d)
                 mq = l1_model(rc.d, ev["g"], sigma, ev["ineq"] + 0.5 * bq * dd, ev["ineq_jac"],
                               ev["eq"] + 0.5 * cq * dd, ev["eq_jac"], mu)
-                if rc.ok and mu * _l1_infeas(ev) - mq > 0.0:
+                if rc.ok and mu * ev["l1"] - mq > 0.0:
                     res = dataclasses.replace(rc, model=mq)
             d = res.d
             viol = _violation(ev["raw"])
-            phi = ev["f"] + mu * _l1_infeas(ev)
-            pred = mu * _l1_infeas(ev) - res.model  # model reduction of phi
+            phi = ev["f"] + mu * ev["l1"]
+            pred = mu * ev["l1"] - res.model  # model reduction of phi
             dn = float(np.max(np.abs(d), initial=0.0))
             xs = 1.0 + float(np.max(np.abs(x), initial=0.0))
             if viol <= self.eps_c and (dn / xs < self.eps_x or pred / (1.0 + abs(ev["f"])) < self.eps_f):
@@ -293,13 +295,13 @@ class DynamicQPlus(AbstractSolver):
             xt = np.clip(x + d, lo, up)
             evt = scaled(oracle.evaluate(xt))
             ok = _finite(evt)
-            phit = evt["f"] + mu * _l1_infeas(evt) if ok else math.inf
+            phit = evt["f"] + mu * evt["l1"] if ok else math.inf
             # non-monotone ratio (against the worst of the last few accepted merits) so that a
             # step along a curved constraint is not rejected by the l1 merit (Maratos effect)
-            phi_ref = max(phi, max(e["f"] + mu * _l1_infeas(e) for e in recent))
+            phi_ref = max(phi, max(e["f"] + mu * e["l1"] for e in recent))
             ratio = (phi_ref - phit) / pred
             n_soc_step = 0
-            if (self.second_order_correction and ok and ratio < self.eta and _l1_infeas(evt) > _l1_infeas(ev)):
+            if (self.second_order_correction and ok and ratio < self.eta and evt["l1"] > ev["l1"]):
                 # [OWN] second-order correction (Fletcher 1982): the linearization at x shifted to the
                 # constraint values at the trial point, so the corrected step follows curved constraints
                 # where the l1 merit rejected the plain one (Maratos effect; HS27, HS47).  One more point.
@@ -310,7 +312,7 @@ class DynamicQPlus(AbstractSolver):
                     xc = np.clip(x + rs.d, lo, up)
                     evc = scaled(oracle.evaluate(xc))
                     if _finite(evc):
-                        ratio_c = (phi_ref - (evc["f"] + mu * _l1_infeas(evc))) / pred
+                        ratio_c = (phi_ref - (evc["f"] + mu * evc["l1"])) / pred
                         if ratio_c >= self.eta:
                             xt, evt, ratio, n_soc_step = xc, evc, ratio_c, 1
             log.append({"i": it, "f": ev["f"], "max_violation": viol, "rho": rho,

@@ -48,3 +48,22 @@ def test_a_failed_run_without_counts_has_no_evaluations():
 def test_no_runs_is_an_error():
     with pytest.raises(HarnessArgumentError, match="no runs"):
         to_optiprofiler(_runs().iloc[:0])
+
+
+def test_experiment_directory_loads_through_optiprofilers_benchmark_load_path(tmp_path, monkeypatch):
+    """The directory layout is what `optiprofiler.benchmark(load="latest", benchmark_id=...)`
+    reads: its own `load_results` finds the experiment, selects solvers and problems and
+    keeps every field (drawing itself is left to OptiProfiler)."""
+    loader = pytest.importorskip("optiprofiler.loader")
+    runs = _runs().assign(problem=["HS71", "HS71"], success=[True, False])
+    monkeypatch.chdir(tmp_path)
+    export_optiprofiler(runs, "campaign", plib="demo")
+    export_optiprofiler(runs, "campaign", plib="demo")  # re-export: still one experiment
+    assert len(list((tmp_path / "campaign" / "demo" / "test_log").glob("time_stamp_*.txt"))) == 1
+    results, opts = loader.load_results({}, {"load": "latest", "benchmark_id": "campaign"})
+    r = results[0]
+    assert opts["solver_names"] == ["a", "b"] and r["problem_names"] == ["p1"]
+    assert r["problem_types"] == ["n"] and r["problem_mnlcons"][0] == 2  # HS71 from the S2MPJ catalogue
+    np.testing.assert_array_equal(r["solvers_successes"][0, :, 0], [True, False])
+    assert r["merit_outs"][0, 0, 0] == 1.0  # feasible end: the merit is f
+    assert r["merit_histories"].shape == r["fun_histories"].shape

@@ -107,6 +107,37 @@ def test_csc_view_equals_scipy(seed, m, n):
 
 
 @settings(max_examples=60, deadline=None)
+@given(st.integers(0, 10_000), st.integers(1, 8), st.integers(0, 5), st.integers(0, 4), st.floats(0, 1))
+def test_qp_matrices_from_patterns_equal_the_dense_assembly(seed, n, p, q, zeros):
+    """The QP's Hessian and constraint matrices built from cached index patterns are exactly
+    the CSC arrays of their dense assembly (exact zeros, -0.0 included, dropped alike)."""
+    from solvers._qp_subproblem import _constraint_csc, _csc, _hessian_csc, _identity_blocks
+
+    rng = np.random.default_rng(seed)
+
+    def sparse(*shape):
+        a = rng.normal(size=shape) * (rng.random(shape) >= zeros)
+        a[rng.random(shape) < 0.1 * zeros] = -0.0
+        return a
+
+    ne, nv = p + 2 * q, n + p + 2 * q
+    B = sparse(n, n)
+    B = B + B.T
+    Pd = np.zeros((nv, nv))
+    Pd[:n, :n] = np.triu(B)
+    Jg, Jh = sparse(p, n), sparse(q, n)
+    A = np.zeros((q + p + ne + 2 * n, nv))
+    A[:q, :n], A[q:q + p, :n] = Jh, Jg
+    rows, cols, vals = _identity_blocks(n, p, q)
+    A[rows, cols] = vals
+    for view, ref in ((_hessian_csc(B, n, nv), _csc(Pd)), (_constraint_csc(Jg, Jh, n, p, q), _csc(A))):
+        assert view.shape == ref.shape
+        for k in ("indptr", "indices", "data"):
+            a, b = getattr(view, k), getattr(ref, k)
+            assert a.dtype == b.dtype and np.array_equal(a, b), k
+
+
+@settings(max_examples=60, deadline=None)
 @given(st.integers(0, 10_000), st.integers(1, 8), st.floats(-12, 10))
 def test_inside_bounds_agrees_with_eigh(seed, n, log_scale):
     """The Cholesky test of the BFGS safeguard never skips a clipping eigh would do."""
