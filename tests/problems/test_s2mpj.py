@@ -87,7 +87,7 @@ def _check_problem_derivatives(p, instance: str) -> None:
         return
     for v in _directions(p.n):
         for exact, fun, shape, scale, what in checks:
-            along = lambda t, fun=fun, v=v: fun(x + t[0] * v)  # noqa: B023 - bound by the defaults
+            along = lambda t, fun=fun, v=v: fun(x + t[0] * v)
             assert _agrees(exact @ v, along, np.zeros(1), shape[:-1], scale), (instance, what, "directional")
 
 
