@@ -106,34 +106,40 @@ def _csc(dense: np.ndarray) -> _CscView:
 
 
 @functools.cache
-def _upper_pattern(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Row and column indices of the upper triangle of an n x n matrix in CSC order (by
-    column, then row)."""
+def _upper_pattern(n: int, nv: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The upper triangle of an n x n matrix in CSC order (by column, then row): row and
+    column indices, flat indices into the n x n array, and the column pointers of an nv x nv
+    matrix holding it with no zero entry (the usual case: a quasi-Newton matrix is dense)."""
     cols, rows = np.nonzero(np.triu(np.ones((n, n))).T)
-    return rows.astype(np.int64), cols.astype(np.int64)
+    indptr = np.zeros(nv + 1, dtype=np.int64)
+    np.cumsum(np.bincount(cols, minlength=nv), out=indptr[1:])
+    return rows.astype(np.int64), cols.astype(np.int64), (rows * n + cols).astype(np.int64), indptr
 
 
 def _hessian_csc(sig: np.ndarray, n: int, nv: int) -> _CscView:
     """The upper triangle of the n x n model Hessian ``sig`` in the top-left of an nv x nv
     matrix, in CSC form: the same arrays as ``_csc`` of the dense embedding (exact zeros
     dropped), from cached index arrays instead of a dense nv x nv scan."""
-    rows, cols = _upper_pattern(n)
-    vals = sig[rows, cols]
+    rows, cols, flat, indptr = _upper_pattern(n, nv)
+    vals = sig.take(flat)
     keep = vals != 0.0
-    if not keep.all():
-        rows, cols, vals = rows[keep], cols[keep], vals[keep]
+    if keep.all():
+        return _CscView((nv, nv), vals, rows, indptr)
     indptr = np.zeros(nv + 1, dtype=np.int64)
-    np.cumsum(np.bincount(cols, minlength=nv), out=indptr[1:])
-    return _CscView((nv, nv), vals, rows, indptr)
+    np.cumsum(np.bincount(cols[keep], minlength=nv), out=indptr[1:])
+    return _CscView((nv, nv), vals[keep], rows[keep], indptr)
 
 
 @functools.cache
-def _constraint_pattern(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
+def _constraint_pattern(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int,
+                                                          np.ndarray, np.ndarray]:
     """Fixed parts of the constraint matrix's CSC form (see `solve_elastic_qp`).
 
     Column j < n holds, by row: the q equality and p inequality Jacobian entries, then the
     box rows +1 and -1; the template's row indices are ``rows`` (n, q + p + 2).  The
-    elastic columns hold only +-1 entries: their data, row indices and counts are fixed."""
+    elastic columns hold only +-1 entries: their data, row indices and counts are fixed.
+    Also the row indices and column pointers of the whole matrix when no Jacobian entry is
+    zero (dense Jacobians, the usual case)."""
     ne = p + 2 * q
     m = q + p + ne + 2 * n
     box = q + p + ne
@@ -145,23 +151,29 @@ def _constraint_pattern(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray,
     r, c, v = _identity_blocks(n, p, q)
     A[r, c] = v
     el = _csc(A[:, n:])
-    return rows, el.data, el.indices, np.diff(el.indptr), m
+    el_counts = np.diff(el.indptr)
+    dense_indptr = np.zeros(n + ne + 1, dtype=np.int64)
+    np.cumsum(np.concatenate((np.full(n, q + p + 2), el_counts)), out=dense_indptr[1:])
+    dense_rows = np.concatenate((rows.ravel(), el.indices))
+    return rows, el.data, el.indices, el_counts, m, dense_rows, dense_indptr
 
 
 def _constraint_csc(Jg: np.ndarray, Jh: np.ndarray, n: int, p: int, q: int) -> _CscView:
     """The constraint matrix of `solve_elastic_qp` in CSC form: the same arrays as ``_csc``
     of its dense assembly (exact zeros dropped), from cached index arrays."""
-    rows, el_data, el_rows, el_counts, m = _constraint_pattern(n, p, q)
+    rows, el_data, el_rows, el_counts, m, dense_rows, dense_indptr = _constraint_pattern(n, p, q)
     W = np.empty((n, q + p + 2))
     W[:, :q] = Jh.T
     W[:, q:q + p] = Jg.T
     W[:, q + p] = 1.0
     W[:, q + p + 1] = -1.0
     keep = W != 0.0
+    shape = (m, n + el_counts.size)
+    if keep.all():
+        return _CscView(shape, np.concatenate((W.ravel(), el_data)), dense_rows, dense_indptr)
     indptr = np.zeros(n + el_counts.size + 1, dtype=np.int64)
     np.cumsum(np.concatenate((keep.sum(axis=1), el_counts)), out=indptr[1:])
-    return _CscView((m, n + el_counts.size), np.concatenate((W[keep], el_data)),
-                    np.concatenate((rows[keep], el_rows)), indptr)
+    return _CscView(shape, np.concatenate((W[keep], el_data)), np.concatenate((rows[keep], el_rows)), indptr)
 
 
 def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
@@ -194,7 +206,7 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     ok = str(sol.status) in ("Solved", "AlmostSolved") or (
         str(sol.status) in ("InsufficientProgress", "MaxIterations", "MaxTime", "AlmostPrimalInfeasible",
                             "AlmostDualInfeasible") and bool(np.all(np.isfinite(v)) and np.all(np.isfinite(z))))
-    d = np.clip(v[:n], d_lo, d_up) if ok else np.zeros(n)
+    d = np.minimum(np.maximum(v[:n], d_lo), d_up) if ok else np.zeros(n)  # np.clip, without its wrapper
     nu = z[:q].copy() if ok else np.zeros(q)
     lam = np.maximum(z[q:q + p], 0.0) if ok else np.zeros(p)
     elastic = float(v[n:].sum()) if ok else 0.0

@@ -23,6 +23,7 @@ import math
 from typing import Any
 
 import numpy as np
+from scipy.linalg.lapack import dpotrf
 
 from problems import Oracle
 
@@ -39,12 +40,11 @@ COND_MAX = 1e4  # largest ratio of the diagonal curvatures
 
 
 def _finite(ev: dict[str, Any]) -> bool:
-    return bool(np.isfinite(ev["f"]) and all(np.all(np.isfinite(ev[k]))
-                                             for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac")))
+    return bool(np.isfinite(ev["f"]) and all(np.isfinite(ev[k]).all() for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac")))
 
 
 def _violation(ev: dict[str, Any]) -> float:
-    return max(float(np.max(ev["ineq"], initial=0.0)), float(np.max(np.abs(ev["eq"]), initial=0.0)))
+    return max(float(ev["ineq"].max(initial=0.0)), float(np.abs(ev["eq"]).max(initial=0.0)))
 
 
 def _l1_infeas(ev: dict[str, Any]) -> float:
@@ -187,11 +187,10 @@ class DynamicQPlus(AbstractSolver):
         tr = float(np.trace(B))
         if not (tr <= self.sigma_max):
             return False
-        try:
-            np.linalg.cholesky(B - (self.sigma_min + 1e-10 * tr) * np.eye(B.shape[0]))
-        except np.linalg.LinAlgError:
-            return False
-        return True
+        shifted = B.copy()
+        shifted.flat[::B.shape[0] + 1] -= self.sigma_min + 1e-10 * tr  # B - c I without building I
+        # LAPACK's Cholesky (as np.linalg.cholesky) called directly: info > 0 = not positive definite
+        return dpotrf(shifted, lower=1, clean=0, overwrite_a=1)[1] == 0
 
     def _restart_before_stop(self, restarted: bool, n_upd: int) -> bool:
         """[OWN] Restart the quasi-Newton matrix once instead of stopping.
@@ -223,10 +222,11 @@ class DynamicQPlus(AbstractSolver):
             out = {"f": sf * e["f"], "g": sf * e["g"], "ineq": sg * e["ineq"], "ineq_jac": sg[:, None] * e["ineq_jac"],
                    "eq": sh * e["eq"], "eq_jac": sh[:, None] * e["eq_jac"], "raw": e}
             out["l1"] = _l1_infeas(out)  # the merit's infeasibility, used several times per point
+            out["viol"] = _violation(e)  # unscaled, for the feasibility tests
             return out
 
         ev = scaled(ev0)
-        scale_x = max(1.0, float(np.max(np.abs(x), initial=0.0)))
+        scale_x = max(1.0, float(np.abs(x).max(initial=0.0)))
         rho = float(self.rho) * scale_x
         n_upd = 0
         bq, cq = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)  # constraint curvatures (3.6)
@@ -242,11 +242,11 @@ class DynamicQPlus(AbstractSolver):
                                    np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
             if not res.ok:  # [OWN] numerical trouble in the QP solver: retry with a smaller move limit
                 rho *= self.shrink
-                if rho / (1.0 + float(np.max(np.abs(x), initial=0.0))) < 1e-3 * self.eps_x:
+                if rho / (1.0 + float(np.abs(x).max(initial=0.0))) < 1e-3 * self.eps_x:
                     return SolverOutput(x, Status.ERROR, "QP subproblem failed", nit=it,
                                         extra=self._extra(log, n_rej))
                 continue
-            mult = max(float(np.max(res.lam, initial=0.0)), float(np.max(np.abs(res.nu), initial=0.0)))
+            mult = max(float(res.lam.max(initial=0.0)), float(np.abs(res.nu).max(initial=0.0)))
             if mult > 0.5 * mu and res.elastic <= self.eps_c:
                 # [OWN] the exact-penalty weight must exceed the multipliers.  Not raised while the
                 # slacks are in use: then the multipliers sit at mu because the move limit cuts the
@@ -274,11 +274,11 @@ class DynamicQPlus(AbstractSolver):
                 if rc.ok and mu * ev["l1"] - mq > 0.0:
                     res = dataclasses.replace(rc, model=mq)
             d = res.d
-            viol = _violation(ev["raw"])
+            viol = ev["viol"]
             phi = ev["f"] + mu * ev["l1"]
             pred = mu * ev["l1"] - res.model  # model reduction of phi
-            dn = float(np.max(np.abs(d), initial=0.0))
-            xs = 1.0 + float(np.max(np.abs(x), initial=0.0))
+            dn = float(np.abs(d).max(initial=0.0))
+            xs = 1.0 + float(np.abs(x).max(initial=0.0))
             if viol <= self.eps_c and (dn / xs < self.eps_x or pred / (1.0 + abs(ev["f"])) < self.eps_f):
                 if self._restart_before_stop(restarted, n_upd):
                     sigma, restarted = self._spherical_restart(s_last, oracle.n), True
@@ -308,7 +308,7 @@ class DynamicQPlus(AbstractSolver):
                 rs = solve_elastic_qp(ev["g"], sigma, evt["ineq"] - ev["ineq_jac"] @ d, ev["ineq_jac"],
                                       evt["eq"] - ev["eq_jac"] @ d, ev["eq_jac"],
                                       np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
-                if rs.ok and float(np.max(np.abs(rs.d), initial=0.0)) > 0.0:
+                if rs.ok and float(np.abs(rs.d).max(initial=0.0)) > 0.0:
                     xc = np.clip(x + rs.d, lo, up)
                     evc = scaled(oracle.evaluate(xc))
                     if _finite(evc):
@@ -341,7 +341,7 @@ class DynamicQPlus(AbstractSolver):
                 interior = dn < 0.99 * rho  # the full QP step, not cut by the move limit
                 x, ev = xt, evt
                 if (interior and ratio >= 0.75 and f_change < self.eps_df and viol <= self.eps_c
-                        and _violation(evt["raw"]) <= self.eps_c):
+                        and evt["viol"] <= self.eps_c):
                     if self._restart_before_stop(restarted, n_upd):
                         sigma, restarted = self._spherical_restart(s_last, oracle.n), True
                         recent = [evt]
