@@ -40,7 +40,8 @@ COND_MAX = 1e4  # largest ratio of the diagonal curvatures
 
 
 def _finite(ev: dict[str, Any]) -> bool:
-    return bool(np.isfinite(ev["f"]) and all(np.isfinite(ev[k]).all() for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac")))
+    return bool(np.isfinite(ev["f"])
+                and all(np.isfinite(ev[k]).all() for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac")))
 
 
 def _violation(ev: dict[str, Any]) -> float:

@@ -31,6 +31,31 @@ def test_overhead_per_oracle_point(benchmark, hs_problems, solver):
     assert np.isfinite(ms) and ms > 0
 
 
+def _median_overhead_per_iteration_ms(problems, solver, repeats: int = 3) -> float:
+    """Issue 15's measure: per problem, (wall time - time in the problem's functions) /
+    iterations, best of ``repeats`` (timing noise only adds); the median over the problems."""
+    best = []
+    for p in problems:
+        runs = [solve(p, solver) for _ in range(repeats)]
+        best.append(min((r.wall_time - r.time_in_evals) / max(r.nit, 1) for r in runs))
+    return 1e3 * float(np.median(best))
+
+
+def test_overhead_per_iteration_on_the_hs_suite(benchmark):
+    """dynamic-q-plus against SciPy's SLSQP on every hs problem, back to back; ``extra_info``
+    holds both medians and their ratio (docs/thesis_solvers.md, "Measured figures")."""
+    problems = [c.problem for c in get_suite("hs").cases()]
+
+    def both():
+        return {s: _median_overhead_per_iteration_ms(problems, s) for s in ("dynamic-q-plus", "scipy-slsqp")}
+
+    ms = benchmark.pedantic(both, rounds=1, iterations=1)
+    benchmark.extra_info.update({f"{k}_ms_per_iteration": v for k, v in ms.items()})
+    benchmark.extra_info["ratio"] = ms["dynamic-q-plus"] / ms["scipy-slsqp"]
+    print(f"overhead per iteration: {ms}, ratio {benchmark.extra_info['ratio']:.2f}")
+    assert all(np.isfinite(v) and v > 0 for v in ms.values())
+
+
 def test_elastic_qp_n20(benchmark):
     """One elastic QP subproblem, n = 20, 15 inequalities, 5 equalities."""
     rng = np.random.default_rng(0)
