@@ -126,7 +126,9 @@ def test_f0_whole_library():
 @pytest.mark.parametrize("instance", list(select("")["instance"]))
 def test_derivatives_whole_library(instance):
     """Every default-size instance: every column for n <= FULL_CHECK_MAX_N, three
-    directional derivatives above (`python -m pytest -m slow -n 2`: about an hour)."""
+    directional derivatives above.  Run it with work stealing, so that one slow instance
+    does not hold a queue of others: ``python -m pytest -m slow -n 2 --dist worksteal -v
+    tests/problems/test_s2mpj.py`` (docs/cutest.md, "Checks")."""
     _check_derivatives(instance)
 
 
