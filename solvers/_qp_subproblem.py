@@ -105,75 +105,67 @@ def _csc(dense: np.ndarray) -> _CscView:
     return _CscView(dense.shape, np.ascontiguousarray(dense.T[cols, rows]), rows.astype(np.int64), indptr)
 
 
+def _pattern_csc(shape: tuple[int, int], vals: np.ndarray, rows: np.ndarray, cols: np.ndarray,
+                 indptr: np.ndarray) -> _CscView:
+    """CSC arrays of a matrix given by a fixed pattern (``rows``, ``cols`` in CSC order, its
+    column pointers ``indptr``) and this call's values: the same arrays as ``_csc`` of the
+    dense matrix, i.e. exact zeros dropped (only then is the column count recomputed)."""
+    keep = vals != 0.0
+    if keep.all():  # the usual case: a quasi-Newton matrix and most Jacobians are dense
+        return _CscView(shape, vals, rows, indptr)
+    indptr = np.zeros(shape[1] + 1, dtype=np.int64)
+    np.cumsum(np.bincount(cols[keep], minlength=shape[1]), out=indptr[1:])
+    return _CscView(shape, vals[keep], rows[keep], indptr)
+
+
+def _pattern_of(dense: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(rows, cols, indptr) of the nonzero pattern of ``dense`` in CSC order."""
+    view = _csc(dense)
+    return view.indices, np.repeat(np.arange(dense.shape[1]), np.diff(view.indptr)), view.indptr
+
+
 @functools.cache
-def _upper_pattern(n: int, nv: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The upper triangle of an n x n matrix in CSC order (by column, then row): row and
-    column indices, flat indices into the n x n array, and the column pointers of an nv x nv
-    matrix holding it with no zero entry (the usual case: a quasi-Newton matrix is dense)."""
-    cols, rows = np.nonzero(np.triu(np.ones((n, n))).T)
-    indptr = np.zeros(nv + 1, dtype=np.int64)
-    np.cumsum(np.bincount(cols, minlength=nv), out=indptr[1:])
-    return rows.astype(np.int64), cols.astype(np.int64), (rows * n + cols).astype(np.int64), indptr
+def _hessian_pattern(n: int, nv: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Pattern of the upper triangle of the n x n Hessian block of the nv x nv matrix P, and
+    the flat indices of its entries in the n x n Hessian."""
+    block = np.zeros((nv, nv))
+    block[:n, :n] = np.triu(np.ones((n, n)))
+    rows, cols, indptr = _pattern_of(block)
+    return rows, cols, indptr, rows * n + cols
+
+
+@functools.cache
+def _constraint_pattern(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Pattern of the constraint matrix of `solve_elastic_qp` with dense Jacobians, and the
+    values of its fixed +-1 entries (NaN where this call's Jacobian entries go).
+
+    By column: j < n holds the q equality and p inequality Jacobian entries, then the box
+    rows +1 and -1; the elastic columns hold only +-1 entries."""
+    ne = p + 2 * q
+    A = np.zeros((q + p + ne + 2 * n, n + ne))
+    A[:q + p, :n] = np.nan  # nonzero, marks the Jacobian entries
+    r, c, v = _identity_blocks(n, p, q)
+    A[r, c] = v
+    rows, cols, indptr = _pattern_of(A)
+    return rows, cols, indptr, A.T[cols, rows]
 
 
 def _hessian_csc(sig: np.ndarray, n: int, nv: int) -> _CscView:
-    """The upper triangle of the n x n model Hessian ``sig`` in the top-left of an nv x nv
-    matrix, in CSC form: the same arrays as ``_csc`` of the dense embedding (exact zeros
-    dropped), from cached index arrays instead of a dense nv x nv scan."""
-    rows, cols, flat, indptr = _upper_pattern(n, nv)
-    vals = sig.take(flat)
-    keep = vals != 0.0
-    if keep.all():
-        return _CscView((nv, nv), vals, rows, indptr)
-    indptr = np.zeros(nv + 1, dtype=np.int64)
-    np.cumsum(np.bincount(cols[keep], minlength=nv), out=indptr[1:])
-    return _CscView((nv, nv), vals[keep], rows[keep], indptr)
-
-
-@functools.cache
-def _constraint_pattern(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int,
-                                                          np.ndarray, np.ndarray]:
-    """Fixed parts of the constraint matrix's CSC form (see `solve_elastic_qp`).
-
-    Column j < n holds, by row: the q equality and p inequality Jacobian entries, then the
-    box rows +1 and -1; the template's row indices are ``rows`` (n, q + p + 2).  The
-    elastic columns hold only +-1 entries: their data, row indices and counts are fixed.
-    Also the row indices and column pointers of the whole matrix when no Jacobian entry is
-    zero (dense Jacobians, the usual case)."""
-    ne = p + 2 * q
-    m = q + p + ne + 2 * n
-    box = q + p + ne
-    rows = np.empty((n, q + p + 2), dtype=np.int64)
-    rows[:, :q + p] = np.arange(q + p)
-    rows[:, q + p] = box + np.arange(n)
-    rows[:, q + p + 1] = box + n + np.arange(n)
-    A = np.zeros((m, n + ne))
-    r, c, v = _identity_blocks(n, p, q)
-    A[r, c] = v
-    el = _csc(A[:, n:])
-    el_counts = np.diff(el.indptr)
-    dense_indptr = np.zeros(n + ne + 1, dtype=np.int64)
-    np.cumsum(np.concatenate((np.full(n, q + p + 2), el_counts)), out=dense_indptr[1:])
-    dense_rows = np.concatenate((rows.ravel(), el.indices))
-    return rows, el.data, el.indices, el_counts, m, dense_rows, dense_indptr
+    """The upper triangle of the n x n model Hessian in the top-left of the nv x nv matrix P,
+    in CSC form: the same arrays as ``_csc`` of that dense embedding."""
+    rows, cols, indptr, flat = _hessian_pattern(n, nv)
+    return _pattern_csc((nv, nv), sig.take(flat), rows, cols, indptr)
 
 
 def _constraint_csc(Jg: np.ndarray, Jh: np.ndarray, n: int, p: int, q: int) -> _CscView:
     """The constraint matrix of `solve_elastic_qp` in CSC form: the same arrays as ``_csc``
-    of its dense assembly (exact zeros dropped), from cached index arrays."""
-    rows, el_data, el_rows, el_counts, m, dense_rows, dense_indptr = _constraint_pattern(n, p, q)
-    W = np.empty((n, q + p + 2))
-    W[:, :q] = Jh.T
-    W[:, q:q + p] = Jg.T
-    W[:, q + p] = 1.0
-    W[:, q + p + 1] = -1.0
-    keep = W != 0.0
-    shape = (m, n + el_counts.size)
-    if keep.all():
-        return _CscView(shape, np.concatenate((W.ravel(), el_data)), dense_rows, dense_indptr)
-    indptr = np.zeros(n + el_counts.size + 1, dtype=np.int64)
-    np.cumsum(np.concatenate((keep.sum(axis=1), el_counts)), out=indptr[1:])
-    return _CscView(shape, np.concatenate((W[keep], el_data)), np.concatenate((rows[keep], el_rows)), indptr)
+    of its dense assembly, from the cached pattern."""
+    rows, cols, indptr, fixed = _constraint_pattern(n, p, q)
+    vals = fixed.copy()
+    # in column j < n the first q + p entries are Jh[:, j] then Jg[:, j], then the two box entries
+    vals[:n * (q + p + 2)].reshape(n, q + p + 2)[:, :q + p] = np.concatenate((Jh, Jg)).T
+    ne = p + 2 * q
+    return _pattern_csc((q + p + ne + 2 * n, n + ne), vals, rows, cols, indptr)
 
 
 def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
