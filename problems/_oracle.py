@@ -27,7 +27,7 @@ import numpy as np
 from ._finite_differences import fd_gradient, fd_jacobian
 from ._problem import Problem, ProblemError
 
-__all__ = ["Oracle", "BudgetExhausted", "Counts"]
+__all__ = ["Oracle", "OraclePoint", "BudgetExhausted", "Counts"]
 
 
 class BudgetExhausted(Exception):
@@ -38,9 +38,30 @@ class Counts(dict):
     """Evaluation counts: nfg, nf, ng, nc, nj, nh."""
 
 
-def _key(x: np.ndarray) -> bytes:
-    return hashlib.blake2b(np.ascontiguousarray(x, dtype=float).tobytes(), digest_size=16).digest()
+#: points of at most this many variables are keyed by their bytes, longer ones by a digest
+RAW_KEY_MAX_N = 16
 
+
+def _key(x: np.ndarray) -> bytes:
+    """Key of a point (``x``: a contiguous float64 vector, as `Oracle._enter` makes it).
+
+    Its bytes when short (cheaper than hashing them), else a 16-byte digest of them: two
+    points share a key exactly when their bytes are equal (up to digest collisions).
+    """
+    if x.size <= RAW_KEY_MAX_N:
+        return x.tobytes()
+    return hashlib.blake2b(x.data, digest_size=16).digest()
+
+
+def _read_only(a: np.ndarray) -> np.ndarray:
+    """A read-only view (the problem may own ``a``; the oracle's cache must not be written)."""
+    v = a.view()
+    v.setflags(write=False)
+    return v
+
+
+_EMPTY = _read_only(np.zeros(0))
+_max = np.maximum.reduce  # ndarray.max without its Python-level wrapper (same reduction)
 
 #: floats of storage for points whose history entries the solver left open (about 80 MB)
 HISTORY_POINT_BUDGET = 10_000_000
@@ -75,7 +96,12 @@ class Oracle:
         self._unfilled_cap = max(0, HISTORY_POINT_BUDGET // max(problem.n, 1))
         # the problem is frozen: its structure is read once, not on every evaluation
         self._n, self._has_bounds = problem.n, problem.has_bounds
-        self.last_x: np.ndarray = problem.x0.copy()
+        self._lower, self._upper = problem.lower, problem.upper
+        self._m = {"ineq": problem.n_ineq, "eq": problem.n_eq}
+        self._funs = {"ineq": problem.ineq, "eq": problem.eq}
+        self._jacs = {"ineq": problem.ineq_jacobian, "eq": problem.eq_jacobian}
+        self._constrained = bool(problem.n_ineq or problem.n_eq)
+        self._last: np.ndarray = problem.x0.copy()
 
     # ------------------------------------------------------------------ structure
     @property
@@ -110,10 +136,18 @@ class Oracle:
     def name(self) -> str:
         return self.problem.name
 
+    @property
+    def last_x(self) -> np.ndarray:
+        """The point entered last (where a solver that stopped abnormally was)."""
+        return self._last.copy()
+
     # --------------------------------------------------------------- bookkeeping
     def _enter(self, x: Any) -> np.ndarray:
-        x = np.array(x, dtype=float).reshape(-1)
-        if x.size != self.n:
+        """Make ``x`` the current point (a fresh float copy): count it if new, reset the cache if moved."""
+        x = np.array(x, dtype=float)
+        if x.ndim != 1:
+            x = x.reshape(-1)
+        if x.size != self._n:
             raise ProblemError(f"{self.name}: point has {x.size} components, expected n = {self.n}")
         k = _key(x)
         if k != self._last_key:
@@ -125,16 +159,17 @@ class Oracle:
                 self._seen.add(k)
                 self.nfg += 1
                 bviol = 0.0
-                if self.has_bounds:
-                    bviol = max(float(np.max(self.lower - x)), float(np.max(x - self.upper)), 0.0)
-                viol = bviol if not (self.n_ineq or self.n_eq) else np.nan
-                self._hist.append([self.nfg, np.nan, viol])
-                self._cache["hist_row"] = self._hist[-1]
-                self._cache["hist_index"] = len(self._hist) - 1
+                if self._has_bounds:
+                    bviol = max(float(_max(self._lower - x)), float(_max(x - self._upper)), 0.0)
+                row = [self.nfg, np.nan, np.nan if self._constrained else bviol]
+                self._hist.append(row)
+                index = len(self._hist) - 1
+                self._cache.update(hist_row=row, hist_index=index, bviol=bviol)
+                self._last = x.copy()
                 if len(self._unfilled) < self._unfilled_cap:
-                    self._unfilled[len(self._hist) - 1] = x.copy()
-                self._cache["bviol"] = bviol
-            self.last_x = x.copy()
+                    self._unfilled[index] = self._last  # never written: shared with last_x
+            else:
+                self._last = x.copy()
         return x
 
     def _note(self, which: str, value: Any) -> None:
@@ -144,14 +179,13 @@ class Oracle:
             return
         if which == "f":
             row[1] = float(value)
-        if which in ("ineq", "eq") and ("ineq" in self._cache or not self.n_ineq) and (
-            "eq" in self._cache or not self.n_eq
-        ):
+        m_ineq, m_eq = self._m["ineq"], self._m["eq"]
+        if which in ("ineq", "eq") and ("ineq" in self._cache or not m_ineq) and ("eq" in self._cache or not m_eq):
             v = self._cache.get("bviol", 0.0)
-            if self.n_ineq:
-                v = max(v, float(np.max(self._cache["ineq"], initial=0.0)))
-            if self.n_eq:
-                v = max(v, float(np.max(np.abs(self._cache["eq"]), initial=0.0)))
+            if m_ineq:
+                v = max(v, float(_max(self._cache["ineq"], initial=0.0)))
+            if m_eq:
+                v = max(v, float(_max(np.abs(self._cache["eq"]), initial=0.0)))
             row[2] = v
         if row[1] == row[1] and row[2] == row[2]:  # both known: nothing left to complete
             self._unfilled.pop(self._cache.get("hist_index", -1), None)
@@ -163,17 +197,15 @@ class Oracle:
         self.nf += 1
         return val
 
-    # --------------------------------------------------------------- objective
-    def f(self, x: Any) -> float:
-        """Objective value."""
-        x = self._enter(x)
+    # The `_..._at(x)` methods evaluate at the current point ``x`` (already entered) and
+    # return the cached value: read-only arrays, copied by the public methods below.
+
+    def _f_at(self, x: np.ndarray) -> float:
         if "f" not in self._cache:
             self._note("f", self._call_f(x))
         return self._cache["f"]
 
-    def grad(self, x: Any) -> np.ndarray:
-        """Objective gradient (exact, or finite differences counted in nf)."""
-        x = self._enter(x)
+    def _grad_at(self, x: np.ndarray) -> np.ndarray:
         if "g" not in self._cache:
             p = self.problem
             t = time.perf_counter()
@@ -182,83 +214,102 @@ class Oracle:
             else:
                 f0 = self._cache.get("f")
                 if f0 is None and p.fd == "forward":
-                    f0 = self.f(x)
+                    f0 = self._f_at(x)
                 g, evals = fd_gradient(p.objective, x, f0, p.fd_step, p.fd)
                 self.nf += evals
             self.time_in_evals += time.perf_counter() - t
-            if g.size != self.n:
+            if g.size != self._n:
                 raise ProblemError(f"{self.name}: gradient has {g.size} components, expected {self.n}")
             self.ng += 1
-            self._cache["g"] = g
-        return self._cache["g"].copy()
+            self._cache["g"] = _read_only(g)
+        return self._cache["g"]
 
-    def f_and_grad(self, x: Any) -> tuple[float, np.ndarray]:
-        """Value and gradient at one point (one N^fg)."""
-        return self.f(x), self.grad(x)
-
-    # ------------------------------------------------------------- constraints
-    def _constraint(self, which: str, x: Any) -> np.ndarray:
-        x = self._enter(x)
-        m = self.n_ineq if which == "ineq" else self.n_eq
+    def _constraint_at(self, which: str, x: np.ndarray) -> np.ndarray:
+        m = self._m[which]
         if m == 0:
-            return np.zeros(0)
+            return _EMPTY
         if which not in self._cache:
-            fun = getattr(self.problem, which)
+            fun = self._funs[which]
             t = time.perf_counter()
-            c = np.atleast_1d(np.asarray(fun(x), dtype=float)).reshape(-1)
+            c = np.asarray(fun(x), dtype=float).reshape(-1)
             self.time_in_evals += time.perf_counter() - t
             if c.size != m:
                 raise ProblemError(f"{self.name}: {which} returned {c.size} values, expected {m}")
             self.nc += 1
-            self._note(which, c)
-        return self._cache[which].copy()
+            self._note(which, _read_only(c))
+        return self._cache[which]
 
-    def _constraint_jac(self, which: str, x: Any) -> np.ndarray:
-        x = self._enter(x)
-        m = self.n_ineq if which == "ineq" else self.n_eq
+    def _constraint_jac_at(self, which: str, x: np.ndarray) -> np.ndarray:
+        m = self._m[which]
         if m == 0:
-            return np.zeros((0, self.n))
+            return np.zeros((0, self._n))
         key = which + "_jac"
         if key not in self._cache:
             p = self.problem
-            jac = getattr(p, key + "obian")
+            jac = self._jacs[which]
             t = time.perf_counter()
             if jac is not None:
-                J = np.asarray(jac(x), dtype=float).reshape(m, self.n)
+                J = np.asarray(jac(x), dtype=float).reshape(m, self._n)
             else:
-                c0 = self._constraint(which, x) if p.fd == "forward" else None
+                c0 = self._constraint_at(which, x) if p.fd == "forward" else None
                 J, evals = fd_jacobian(getattr(p, which), x, c0, p.fd_step, p.fd)
                 self.nc += evals
             self.time_in_evals += time.perf_counter() - t
             self.nj += 1
-            self._cache[key] = J
-        return self._cache[key].copy()
+            self._cache[key] = _read_only(J)
+        return self._cache[key]
 
+    # --------------------------------------------------------------- objective
+    def f(self, x: Any) -> float:
+        """Objective value."""
+        return self._f_at(self._enter(x))
+
+    def grad(self, x: Any) -> np.ndarray:
+        """Objective gradient (exact, or finite differences counted in nf)."""
+        return self._grad_at(self._enter(x)).copy()
+
+    def f_and_grad(self, x: Any) -> tuple[float, np.ndarray]:
+        """Value and gradient at one point (one N^fg)."""
+        pt = self.at(x)
+        return pt.f(), pt.grad().copy()
+
+    # ------------------------------------------------------------- constraints
     def ineq(self, x: Any) -> np.ndarray:
         """Inequality constraint values g(x) (feasible when <= 0)."""
-        return self._constraint("ineq", x)
+        return self._constraint_at("ineq", self._enter(x)).copy()
 
     def eq(self, x: Any) -> np.ndarray:
         """Equality constraint values h(x) (feasible when = 0)."""
-        return self._constraint("eq", x)
+        return self._constraint_at("eq", self._enter(x)).copy()
 
     def ineq_jac(self, x: Any) -> np.ndarray:
         """Jacobian (m, n) of the inequality constraints."""
-        return self._constraint_jac("ineq", x)
+        return self._constraint_jac_at("ineq", self._enter(x)).copy()
 
     def eq_jac(self, x: Any) -> np.ndarray:
         """Jacobian (q, n) of the equality constraints."""
-        return self._constraint_jac("eq", x)
+        return self._constraint_jac_at("eq", self._enter(x)).copy()
+
+    def at(self, x: Any) -> OraclePoint:
+        """The point ``x``, entered once: read f, g, constraints and Jacobians there.
+
+        Counting is that of the methods above: nothing is counted until a quantity is
+        read, then the point is one N^fg and each quantity is evaluated once (nf, ng, nc,
+        nj). What is saved is re-entering the point (copying and hashing ``x``) for every
+        quantity a solver reads at it.
+        """
+        return OraclePoint(self, x)
 
     def evaluate(self, x: Any) -> dict[str, Any]:
-        """Everything first-order at one point: f, g, ineq, ineq_jac, eq, eq_jac."""
+        """Everything first-order at one point: f, g, ineq, ineq_jac, eq, eq_jac (copies)."""
+        pt = self.at(x)
         return {
-            "f": self.f(x),
-            "g": self.grad(x),
-            "ineq": self.ineq(x),
-            "ineq_jac": self.ineq_jac(x),
-            "eq": self.eq(x),
-            "eq_jac": self.eq_jac(x),
+            "f": pt.f(),
+            "g": pt.grad().copy(),
+            "ineq": pt.ineq().copy(),
+            "ineq_jac": pt.ineq_jac().copy(),
+            "eq": pt.eq().copy(),
+            "eq_jac": pt.eq_jac().copy(),
         }
 
     def count_hessian(self, k: int = 1) -> None:
@@ -292,3 +343,45 @@ class Oracle:
             except Exception:  # noqa: BLE001 - a point the problem cannot evaluate stays NaN
                 continue
         return h
+
+
+class OraclePoint:
+    """One point of an `Oracle`, entered once (`Oracle.at`).
+
+    The point is entered at the first access, not before (a solver that reads nothing
+    there evaluates nothing). Its accessors return the oracle's cached values as read-only
+    arrays (no copies). If the solver has meanwhile entered another point, the next
+    access re-enters this one, counted exactly as ``oracle.grad(x)`` and friends would
+    count it.
+    """
+
+    __slots__ = ("_oracle", "_key", "x")
+
+    def __init__(self, oracle: Oracle, x: Any):
+        self._oracle, self._key, self.x = oracle, None, x
+
+    def _current(self) -> np.ndarray:
+        o = self._oracle
+        if self._key is None or o._last_key != self._key:
+            self.x = o._enter(self.x)
+            self._key = o._last_key
+        return self.x
+
+    def f(self) -> float:
+        return self._oracle._f_at(self._current())
+
+    def grad(self) -> np.ndarray:
+        return self._oracle._grad_at(self._current())
+
+    def ineq(self) -> np.ndarray:
+        return self._oracle._constraint_at("ineq", self._current())
+
+    def eq(self) -> np.ndarray:
+        return self._oracle._constraint_at("eq", self._current())
+
+    def ineq_jac(self) -> np.ndarray:
+        return self._oracle._constraint_jac_at("ineq", self._current())
+
+    def eq_jac(self) -> np.ndarray:
+        return self._oracle._constraint_jac_at("eq", self._current())
+

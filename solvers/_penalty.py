@@ -65,12 +65,13 @@ class _BoundsMixin:
     def _bound_penalty_grad(self, x: np.ndarray, two_mu: float, active: Active | None) -> np.ndarray:
         if active is None:  # exterior penalty: only violated bounds
             return two_mu * (np.minimum(x - self.lower, 0.0) + np.maximum(x - self.upper, 0.0))
+        dl, du = x - self.lower, x - self.upper
         if active.exterior:
-            lo = np.where(active.lower, x - self.lower, np.minimum(x - self.lower, 0.0))
-            up = np.where(active.upper, x - self.upper, np.maximum(x - self.upper, 0.0))
+            lo = np.where(active.lower, dl, np.minimum(dl, 0.0))
+            up = np.where(active.upper, du, np.maximum(du, 0.0))
         else:
-            lo = np.where(active.lower, x - self.lower, 0.0)
-            up = np.where(active.upper, x - self.upper, 0.0)
+            lo = np.where(active.lower, dl, 0.0)
+            up = np.where(active.upper, du, 0.0)
         return two_mu * (np.where(np.isfinite(lo), lo, 0.0) + np.where(np.isfinite(up), up, 0.0))
 
     def _bound_active(self, x: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
@@ -80,6 +81,35 @@ class _BoundsMixin:
         if not self.has_bounds:
             return 0.0
         return max(float(np.max(self.lower - x)), float(np.max(x - self.upper)), 0.0)
+
+
+def _weighted(w: np.ndarray, alpha: Any) -> np.ndarray:
+    """w * alpha; one overall weight (alpha = 1.0, the default) leaves w as it is (exactly w * 1.0)."""
+    return w if type(alpha) is float and alpha == 1.0 else w * alpha
+
+
+class _FormPoint:
+    """A penalty form's quantities at one point (the generic `PenaltyForm.at`)."""
+
+    __slots__ = ("form", "x")
+
+    def __init__(self, form: PenaltyForm, x: np.ndarray):
+        self.form, self.x = form, x
+
+    def grad(self) -> np.ndarray:
+        return self.form.gradf(self.x)
+
+    def ineq(self) -> np.ndarray:
+        return self.form.ineq(self.x)
+
+    def ineq_jac(self) -> np.ndarray:
+        return self.form.ineq_jac(self.x)
+
+    def eq(self) -> np.ndarray:
+        return self.form.eq(self.x)
+
+    def eq_jac(self) -> np.ndarray:
+        return self.form.eq_jac(self.x)
 
 
 class PenaltyForm(_BoundsMixin):
@@ -164,24 +194,29 @@ class PenaltyForm(_BoundsMixin):
         return self.q != 0
 
     # -- penalty gradients -----------------------------------------------------------
+    def at(self, x: np.ndarray) -> Any:
+        """The form's quantities at ``x``: ``grad()``, ``ineq()``, ``ineq_jac()``, ``eq()``, ``eq_jac()``."""
+        return _FormPoint(self, x)
+
     def grad_Q(self, x: np.ndarray, mu: float, active: Active | None = None) -> np.ndarray:
         """Gradient of Q(x, mu) (eq. B.6) or, with ``active``, of Q_a (eq. B.7)."""
         two_mu = 2.0 * mu
+        pt = self.at(x)
         if active is None:
-            gr = self.gradf(x)
+            gr = pt.grad()
             if self.has_ineq:
-                w = np.maximum(self.ineq(x), 0.0)
+                w = np.maximum(pt.ineq(), 0.0)
                 if w.any():  # Jacobian only where some constraint is violated
-                    gr = gr + two_mu * (self.ineq_jac(x).T @ (w * self.alpha_g))
+                    gr = gr + two_mu * (pt.ineq_jac().T @ _weighted(w, self.alpha_g))
         else:
             gr = np.zeros(self.n)
             if active.ineq.any() or (active.exterior and self.has_ineq):
-                g = self.ineq(x)
+                g = pt.ineq()
                 w = np.where(active.ineq, g, np.maximum(g, 0.0) if active.exterior else 0.0)
                 if w.any():
-                    gr = gr + two_mu * (self.ineq_jac(x).T @ (w * self.alpha_g))
+                    gr = gr + two_mu * (pt.ineq_jac().T @ _weighted(w, self.alpha_g))
         if self.has_eq:
-            gr = gr + two_mu * (self.eq_jac(x).T @ (self.eq(x) * self.alpha_h))
+            gr = gr + two_mu * (pt.eq_jac().T @ _weighted(pt.eq(), self.alpha_h))
         if self.has_bounds:
             gr = gr + self._bound_penalty_grad(x, two_mu, active)
         return gr
@@ -240,6 +275,10 @@ class OracleForm(PenaltyForm):
 
     def gradf(self, x: np.ndarray) -> np.ndarray:
         return self.oracle.grad(x)
+
+    def at(self, x: np.ndarray) -> Any:
+        """One oracle entry per point, however many quantities grad_Q reads there."""
+        return self.oracle.at(x)
 
 
 @dataclasses.dataclass

@@ -158,14 +158,18 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
     guard, kfac, eps_g, eps_x = P.stiffness_guard, P.kappa_fac, P.eps_g, P.eps_x
     moving = P.interference_anchor == "moving"
     last = (x, anorm)
+    vv = None  # v @ v of the current v where already computed (each dot product is formed once)
     while True:
         # Steps 2-4: step length, magnification below the limit, cap (and halving) at it
-        vnorm = _norm(v)
+        if vv is None:
+            vv = float(v @ v)
+        vnorm = math.sqrt(vv)
         if vnorm * dt < delta:
             p += delta1
             dt *= p
         else:
             v = v * (delta / (dt * vnorm))
+            vv = None
             if s >= m:  # m consecutive reversals at the step limit: halve dt [MLA3]
                 dt *= 0.5
                 x = 0.5 * (x + x_prev)
@@ -183,6 +187,7 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
             a_new = -np.asarray(grad(x), dtype=float).reshape(-1)
             ng += 1
             v_prev = v
+            vv_prev = float(v @ v) if vv is None else vv
             v = v + a_new * dt
             # Step 7: acceleration reversal counter
             if float(a_new @ a) > 0.0:
@@ -214,7 +219,8 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
             if ng >= P.max_steps:
                 return LfopResult(x, ng, "max_steps", anorm, n_int, n_half, dt)
             # Step 9: energy test; interference when kinetic energy does not grow (eq. B.5)
-            if float(v @ v) > float(v_prev @ v_prev):
+            vv = float(v @ v)
+            if vv > vv_prev:
                 i = 0
                 break
             n_int += 1
@@ -223,6 +229,7 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
                 x_prev = x
             x = x_mid
             i += 1
+            vv = None
             if i <= j:
                 v = 0.25 * (v + v_prev)
             else:

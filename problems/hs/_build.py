@@ -119,14 +119,18 @@ class _Numeric:
             b = self._local.b = (xin, out, buf, run)
         return b
 
-    def __call__(self, x: np.ndarray) -> np.ndarray:
+    def _run(self, x: Any) -> np.ndarray:
+        """Evaluate at ``x``; the result is the buffer itself (column-major), valid until the next call."""
         x = np.asarray(x, dtype=float)
         if x.size != self.n:
             raise ValueError(f"{self.fun.name()}: x must have {self.n} entries, got shape {x.shape}")
         xin, out, _, run = self._buffers()
-        xin[:] = x.reshape(-1)
+        xin[:] = x if x.ndim == 1 else x.reshape(-1)
         run()
-        return out.copy()  # column-major values
+        return out
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        return self._run(x).copy()  # column-major values
 
 
 def _vec(fun: ca.Function):
@@ -142,7 +146,7 @@ def _mat(fun: ca.Function, rows: int, cols: int):
     num = _Numeric(fun, rows, cols)
 
     def call(x: np.ndarray) -> np.ndarray:
-        return num(x).reshape(cols, rows).T.copy()  # CasADi stores column-major
+        return num._run(x).reshape(cols, rows).T.copy()  # CasADi stores column-major
 
     return call
 
@@ -151,7 +155,7 @@ def _scalar(fun: ca.Function):
     num = _Numeric(fun, 1, 1)
 
     def call(x: np.ndarray) -> float:
-        return float(num(x)[0])
+        return float(num._run(x)[0])
 
     return call
 

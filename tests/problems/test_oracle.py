@@ -79,3 +79,67 @@ def test_bad_inputs_are_clear_errors():
         Problem(name="bad", x0=[0.0], objective=lambda x: 0.0, lower=[1.0], upper=[0.0])
     with pytest.raises(ProblemError, match="expected n = 2"):
         Oracle(quad()).f([1.0, 2.0, 3.0])
+
+
+def constrained():
+    return Problem(name="c2", x0=[1.0, 2.0], objective=lambda x: float(x @ x), gradient=lambda x: 2 * x,
+                   ineq=lambda x: np.array([x[0] - 0.5, x @ x - 4.0]),
+                   ineq_jacobian=lambda x: np.array([[1.0, 0.0], 2 * x]),
+                   eq=lambda x: np.array([x[0] + x[1] - 1.0]), eq_jacobian=lambda x: np.array([[1.0, 1.0]]),
+                   lower=[-3.0, -3.0], upper=[3.0, 3.0])
+
+
+def test_a_point_reads_everything_with_the_counts_of_separate_calls():
+    xs = [np.array([0.3, 0.9]), np.array([1.5, -0.5]), np.array([0.3, 0.9])]
+    a, b = Oracle(constrained()), Oracle(constrained())
+    for x in xs:
+        pt = a.at(x)
+        got = (pt.f(), pt.grad(), pt.ineq(), pt.ineq_jac(), pt.eq(), pt.eq_jac())
+        want = (b.f(x), b.grad(x), b.ineq(x), b.ineq_jac(x), b.eq(x), b.eq_jac(x))
+        for u, v in zip(got, want):
+            np.testing.assert_array_equal(u, v)
+    assert a.counts() == b.counts() and a.counts()["nfg"] == 2
+    np.testing.assert_array_equal(a.history(), b.history())
+
+
+def test_a_point_counts_nothing_until_read_and_survives_moving_away():
+    o = Oracle(constrained())
+    pt = o.at([0.3, 0.9])
+    assert o.nfg == 0  # nothing read yet
+    g = pt.grad()
+    o.f([1.0, 1.0])  # the solver moves on ...
+    np.testing.assert_array_equal(pt.grad(), g)  # ... and comes back: not a new point
+    assert (o.nfg, o.ng, o.nf) == (2, 2, 1)  # (only the last point's values are cached)
+    pt.ineq()
+    pt.ineq()
+    assert (o.nfg, o.nc) == (2, 1)
+
+
+def test_values_read_from_a_point_cannot_be_written_and_copies_can():
+    o = Oracle(constrained())
+    pt = o.at([0.3, 0.9])
+    with pytest.raises(ValueError):
+        pt.grad()[0] = 1.0
+    with pytest.raises(ValueError):
+        pt.ineq_jac()[0, 0] = 1.0
+    g = o.grad([0.3, 0.9])  # the public methods return copies the caller owns
+    g[0] = 99.0
+    assert pt.grad()[0] == 0.6
+    x = o.last_x
+    x[0] = 99.0
+    assert o.last_x[0] == 0.3
+
+
+@pytest.mark.parametrize("n", [3, 16, 17, 40])
+def test_points_are_told_apart_by_their_bytes_at_every_size(n):
+    """Short points are keyed by their bytes, long ones by a digest: the same counts either way."""
+    p = Problem(name="q", x0=np.ones(n), objective=lambda x: float(x @ x), gradient=lambda x: 2 * x)
+    o = Oracle(p)
+    x = np.linspace(0.0, 1.0, n)
+    y = x.copy()
+    y[-1] = np.nextafter(y[-1], 2.0)  # one ulp apart in the last component
+    z = x.copy()
+    z[0] = -0.0  # +0.0 and -0.0 differ in their bytes, so they are two points
+    for pt in (x, y, x.copy(), z, list(x)):
+        o.grad(pt)
+    assert o.nfg == 3 and o.ng == 5  # x, y and z; each move re-evaluates
