@@ -151,10 +151,11 @@ class Oracle:
             raise ProblemError(f"{self.name}: point has {x.size} components, expected n = {self.n}")
         k = _key(x)
         if k != self._last_key:
-            self._cache = {}
-            self._last_key = k
-            if k not in self._seen:
-                if self.max_nfg is not None and self.nfg >= self.max_nfg:
+            if k in self._seen:
+                self._cache = {}
+                self._last = x.copy()
+            else:
+                if self.max_nfg is not None and self.nfg >= self.max_nfg:  # stays at the last point
                     raise BudgetExhausted(f"evaluation budget of {self.max_nfg} points exhausted")
                 self._seen.add(k)
                 self.nfg += 1
@@ -162,33 +163,34 @@ class Oracle:
                 if self._has_bounds:
                     bviol = max(float(_max(self._lower - x)), float(_max(x - self._upper)), 0.0)
                 row = [self.nfg, np.nan, np.nan if self._constrained else bviol]
+                index = len(self._hist)
                 self._hist.append(row)
-                index = len(self._hist) - 1
-                self._cache.update(hist_row=row, hist_index=index, bviol=bviol)
+                self._cache = {"hist_row": row, "hist_index": index, "bviol": bviol}
                 self._last = x.copy()
                 if len(self._unfilled) < self._unfilled_cap:
                     self._unfilled[index] = self._last  # never written: shared with last_x
-            else:
-                self._last = x.copy()
+            self._last_key = k
         return x
 
     def _note(self, which: str, value: Any) -> None:
-        self._cache[which] = value
-        row = self._cache.get("hist_row")
+        cache = self._cache
+        cache[which] = value
+        row = cache.get("hist_row")
         if row is None:
             return
         if which == "f":
             row[1] = float(value)
-        m_ineq, m_eq = self._m["ineq"], self._m["eq"]
-        if which in ("ineq", "eq") and ("ineq" in self._cache or not m_ineq) and ("eq" in self._cache or not m_eq):
-            v = self._cache.get("bviol", 0.0)
-            if m_ineq:
-                v = max(v, float(_max(self._cache["ineq"], initial=0.0)))
-            if m_eq:
-                v = max(v, float(_max(np.abs(self._cache["eq"]), initial=0.0)))
-            row[2] = v
+        else:
+            m_ineq, m_eq = self._m["ineq"], self._m["eq"]
+            if ("ineq" in cache or not m_ineq) and ("eq" in cache or not m_eq):
+                v = cache.get("bviol", 0.0)
+                if m_ineq:
+                    v = max(v, float(_max(cache["ineq"], initial=0.0)))
+                if m_eq:
+                    v = max(v, float(_max(np.abs(cache["eq"]), initial=0.0)))
+                row[2] = v
         if row[1] == row[1] and row[2] == row[2]:  # both known: nothing left to complete
-            self._unfilled.pop(self._cache.get("hist_index", -1), None)
+            self._unfilled.pop(cache.get("hist_index", -1), None)
 
     def _call_f(self, x: np.ndarray) -> float:
         t = time.perf_counter()

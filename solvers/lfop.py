@@ -109,6 +109,16 @@ def _norm(v: np.ndarray) -> float:
     return math.sqrt(float(v @ v))
 
 
+_F64 = np.dtype(float)
+
+
+def _vector(g: object) -> np.ndarray:
+    """``g`` as a float vector; a float vector is passed through (the usual case, checked cheaply)."""
+    if type(g) is np.ndarray and g.dtype is _F64 and g.ndim == 1:
+        return g
+    return np.asarray(g, dtype=float).reshape(-1)
+
+
 def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopParams = LfopParams(),
          dt_init: float | None = None, stop: Callable[[np.ndarray], bool] | None = None) -> LfopResult:
     """Minimize by the leap-frog dynamic trajectory method (algorithms.md section 1.3).
@@ -184,7 +194,7 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
             return LfopResult(x, ng + 1, "eps_x", _norm(g), n_int, n_half, dt)
         while True:
             # Step 6: kick
-            a_new = -np.asarray(grad(x), dtype=float).reshape(-1)
+            a_new = -_vector(grad(x))
             ng += 1
             v_prev = v
             vv_prev = float(v @ v) if vv is None else vv

@@ -70,6 +70,10 @@ def test_budget():
     o.f([0.0, 2.0])
     with pytest.raises(BudgetExhausted):
         o.f([0.0, 3.0])
+    with pytest.raises(BudgetExhausted):  # asking again is no way around the budget
+        o.grad([0.0, 3.0])
+    assert (o.nfg, o.nf, o.ng) == (2, 2, 0)
+    np.testing.assert_array_equal(o.last_x, [0.0, 2.0])  # the oracle stays at the last point
 
 
 def test_bad_inputs_are_clear_errors():
