@@ -73,6 +73,14 @@ class ScipySLSQP(AbstractSolver):
     maxiter: int = option(500, "iteration cap (SLSQP major iterations)", "SciPy default 100", check=at_least(1))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
+        if oracle.n_eq > oracle.n:
+            # SLSQP's mode 2, answered here: with inequality constraints present SciPy's SLSQP first
+            # writes past its workspace and corrupts the process's heap (scipy/scipy#25665; seen with
+            # SciPy 1.17.1 on hs-all's HS25NE, which later crashed another solver in the same process)
+            return SolverOutput(start_in_bounds(oracle), Status.FAILED,
+                                "SLSQP mode 2: More equality constraints than independent variables "
+                                f"({oracle.n_eq} > n = {oracle.n}; checked before calling SciPy, scipy/scipy#25665)",
+                                extra={"native_status": 2})
         cons: list[dict[str, Any]] = []
         if oracle.n_ineq:
             cons.append({"type": "ineq", "fun": lambda x: -oracle.ineq(x), "jac": lambda x: -oracle.ineq_jac(x)})

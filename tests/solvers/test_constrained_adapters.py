@@ -144,3 +144,18 @@ def test_options_are_documented(name):
     assert cls.family == "established" and {"bounds", "ineq", "eq"} <= cls.handles
     for row in cls.options():
         assert row["doc"], f"{name}.{row['name']} has no doc"
+
+
+def test_slsqp_with_more_equalities_than_variables_fails_without_calling_scipy():
+    """SciPy's SLSQP corrupts the heap when meq > n and inequalities are present
+    (scipy/scipy#25665): the adapter answers SLSQP's mode 2 itself, and the process lives on."""
+    p = Problem(name="overdetermined", x0=[0.5, 0.5], objective=lambda x: float(x @ x), gradient=lambda x: 2 * x,
+                eq=lambda x: np.array([x[0] - 1.0, x[1] - 1.0, x[0] + x[1] - 2.0]),
+                eq_jacobian=lambda x: np.array([[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]),
+                ineq=lambda x: np.array([x[0] - 3.0]), ineq_jacobian=lambda x: np.array([[1.0, 0.0]]))
+    for _ in range(3):
+        r = solve(p, "scipy-slsqp")
+        assert r.status is Status.FAILED and "mode 2" in r.message and "3 > n = 2" in r.message
+        assert r.nfg == 0
+    r = solve(p, "scipy-trust-constr")  # the kind of run that aborted the process afterwards
+    assert r.nfg > 0
