@@ -106,7 +106,7 @@ class LfopResult:
 
 
 def _norm(v: np.ndarray) -> float:
-    return math.sqrt(float(v @ v))
+    return math.sqrt(v.dot(v))
 
 
 _F64 = np.dtype(float)
@@ -172,7 +172,7 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
     while True:
         # Steps 2-4: step length, magnification below the limit, cap (and halving) at it
         if vv is None:
-            vv = float(v @ v)
+            vv = float(v.dot(v))
         vnorm = math.sqrt(vv)
         if vnorm * dt < delta:
             p += delta1
@@ -197,10 +197,10 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
             a_new = -_vector(grad(x))
             ng += 1
             v_prev = v
-            vv_prev = float(v @ v) if vv is None else vv
+            vv_prev = float(v.dot(v)) if vv is None else vv
             v = v + a_new * dt
             # Step 7: acceleration reversal counter
-            if float(a_new @ a) > 0.0:
+            if a_new.dot(a) > 0.0:
                 s = 0
             else:
                 s += 1
@@ -209,15 +209,15 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
                 # Section 1.6 [OWN]: curvature along the last move from two known gradients;
                 # keep dt well inside the leap-frog stability limit dt*sqrt(kappa) < 2.
                 dx = x - x_a
-                dxx = float(dx @ dx)
+                dxx = float(dx.dot(dx))
                 if dxx > 0.0:
-                    kappa = -float((a_new - a) @ dx) / dxx
+                    kappa = -float((a_new - a).dot(dx)) / dxx
                     if kappa > 0.0 and dt * math.sqrt(kappa) > 2.0 * kfac:
                         dt = kfac / math.sqrt(kappa)
                         p = 1.0
             a = a_new
             x_a = x
-            anorm = _norm(a)
+            anorm = math.sqrt(a.dot(a))
             # Step 8: termination
             if not math.isfinite(anorm):
                 return LfopResult(last[0], ng, "nonfinite", last[1], n_int, n_half, dt)
@@ -229,7 +229,7 @@ def lfop(grad: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, params: LfopP
             if ng >= P.max_steps:
                 return LfopResult(x, ng, "max_steps", anorm, n_int, n_half, dt)
             # Step 9: energy test; interference when kinetic energy does not grow (eq. B.5)
-            vv = float(v @ v)
+            vv = float(v.dot(v))
             if vv > vv_prev:
                 i = 0
                 break
