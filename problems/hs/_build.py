@@ -94,6 +94,9 @@ def compiled(pid: str) -> HSFunctions:
     )
 
 
+_F64 = np.dtype(float)
+
+
 class _Numeric:
     """Numeric evaluation of a one-input dense CasADi Function through its buffer interface.
 
@@ -107,6 +110,7 @@ class _Numeric:
     def __init__(self, fun: ca.Function, rows: int, cols: int) -> None:
         self.fun, self.rows, self.cols = fun, rows, cols
         self.n = fun.size1_in(0)
+        self._shape = (self.n,)
         self._local = threading.local()
 
     def _buffers(self) -> tuple[np.ndarray, np.ndarray, Any, Any]:
@@ -121,11 +125,17 @@ class _Numeric:
 
     def _run(self, x: Any) -> np.ndarray:
         """Evaluate at ``x``; the result is the buffer itself (column-major), valid until the next call."""
-        x = np.asarray(x, dtype=float)
-        if x.size != self.n:
-            raise ValueError(f"{self.fun.name()}: x must have {self.n} entries, got shape {x.shape}")
-        xin, out, _, run = self._buffers()
-        xin[:] = x if x.ndim == 1 else x.reshape(-1)
+        try:
+            xin, out, _, run = self._local.b
+        except AttributeError:
+            xin, out, _, run = self._buffers()
+        if type(x) is np.ndarray and x.dtype is _F64 and x.shape == self._shape:  # the usual case
+            xin[:] = x
+        else:
+            x = np.asarray(x, dtype=float)
+            if x.size != self.n:
+                raise ValueError(f"{self.fun.name()}: x must have {self.n} entries, got shape {x.shape}")
+            xin[:] = x if x.ndim == 1 else x.reshape(-1)
         run()
         return out
 
@@ -134,28 +144,28 @@ class _Numeric:
 
 
 def _vec(fun: ca.Function):
-    num = _Numeric(fun, fun.size1_out(0), 1)
+    run = _Numeric(fun, fun.size1_out(0), 1)._run
 
     def call(x: np.ndarray) -> np.ndarray:
-        return num(x)
+        return run(x).copy()
 
     return call
 
 
 def _mat(fun: ca.Function, rows: int, cols: int):
-    num = _Numeric(fun, rows, cols)
+    run = _Numeric(fun, rows, cols)._run
 
     def call(x: np.ndarray) -> np.ndarray:
-        return num._run(x).reshape(cols, rows).T.copy()  # CasADi stores column-major
+        return run(x).reshape(cols, rows).T.copy()  # CasADi stores column-major
 
     return call
 
 
 def _scalar(fun: ca.Function):
-    num = _Numeric(fun, 1, 1)
+    run = _Numeric(fun, 1, 1)._run
 
     def call(x: np.ndarray) -> float:
-        return float(num._run(x)[0])
+        return float(run(x)[0])
 
     return call
 
