@@ -19,6 +19,7 @@ No solver reports its own count: the numbers in every `Result` come from here.
 from __future__ import annotations
 
 import hashlib
+import math
 import time
 from typing import Any
 
@@ -62,6 +63,38 @@ def _read_only(a: np.ndarray) -> np.ndarray:
 
 _EMPTY = _read_only(np.zeros(0))
 _max = np.maximum.reduce  # ndarray.max without its Python-level wrapper (same reduction)
+_F64 = np.dtype(float)
+_isfinite, _isnan = math.isfinite, math.isnan
+
+
+def _max_or_zero(c: np.ndarray) -> float:
+    """``float(_max(c, initial=0.0))`` for a float vector ``c``, bitwise.
+
+    For short vectors the reduction's call costs more than a Python ``max`` over the
+    values; the Python ``max`` is used where it must give the same float: no NaN among
+    the values (their sum is not NaN) and a nonzero result (a zero maximum could be
+    +0.0 or -0.0 depending on the order the two reductions compare ties in).
+    """
+    vals = c.tolist()
+    if not _isnan(sum(vals)):
+        m = max(vals)
+        if m > 0.0:
+            return m
+        if m < 0.0:
+            return 0.0
+    return float(_max(c, initial=0.0))
+
+
+def _abs_max_or_zero(c: np.ndarray) -> float:
+    """``float(_max(np.abs(c), initial=0.0))`` for a float vector ``c``, bitwise (see `_max_or_zero`).
+
+    |c_i| >= +0.0 with no signed-zero ties (abs makes every zero +0.0), so without NaN
+    the Python ``max`` of the absolute values is the same float.
+    """
+    vals = c.tolist()
+    if not _isnan(sum(vals)):
+        return max(0.0, max(map(abs, vals)))
+    return float(_max(np.abs(c), initial=0.0))
 
 #: floats of storage for points whose history entries the solver left open (about 80 MB)
 HISTORY_POINT_BUDGET = 10_000_000
@@ -101,6 +134,9 @@ class Oracle:
         self._funs = {"ineq": problem.ineq, "eq": problem.eq}
         self._jacs = {"ineq": problem.ineq_jacobian, "eq": problem.eq_jacobian}
         self._constrained = bool(problem.n_ineq or problem.n_eq)
+        self._m_ineq, self._m_eq = problem.n_ineq, problem.n_eq
+        self._gradient = problem.gradient
+        self._lower_list, self._upper_list = self._lower.tolist(), self._upper.tolist()
         self._last: np.ndarray = problem.x0.copy()
 
     # ------------------------------------------------------------------ structure
@@ -159,9 +195,7 @@ class Oracle:
                     raise BudgetExhausted(f"evaluation budget of {self.max_nfg} points exhausted")
                 self._seen.add(k)
                 self.nfg += 1
-                bviol = 0.0
-                if self._has_bounds:
-                    bviol = max(float(_max(self._lower - x)), float(_max(x - self._upper)), 0.0)
+                bviol = self._bound_viol(x) if self._has_bounds else 0.0
                 row = [self.nfg, np.nan, np.nan if self._constrained else bviol]
                 index = len(self._hist)
                 self._hist.append(row)
@@ -172,6 +206,16 @@ class Oracle:
             self._last_key = k
         return x
 
+    def _bound_viol(self, x: np.ndarray) -> float:
+        """``max(float(_max(lower - x)), float(_max(x - upper)), 0.0)``, bitwise (see `_max_or_zero`)."""
+        d_lo, d_up = self._lower - x, x - self._upper
+        a, b = d_lo.tolist(), d_up.tolist()
+        if not _isnan(sum(a) + sum(b)):  # no NaN among the differences
+            ma, mb = max(a), max(b)
+            if ma != 0.0 and mb != 0.0:  # no signed-zero tie: the reductions give the same floats
+                return max(ma, mb, 0.0)
+        return max(float(_max(d_lo)), float(_max(d_up)), 0.0)
+
     def _note(self, which: str, value: Any) -> None:
         cache = self._cache
         cache[which] = value
@@ -181,13 +225,13 @@ class Oracle:
         if which == "f":
             row[1] = float(value)
         else:
-            m_ineq, m_eq = self._m["ineq"], self._m["eq"]
+            m_ineq, m_eq = self._m_ineq, self._m_eq
             if ("ineq" in cache or not m_ineq) and ("eq" in cache or not m_eq):
                 v = cache.get("bviol", 0.0)
                 if m_ineq:
-                    v = max(v, float(_max(cache["ineq"], initial=0.0)))
+                    v = max(v, _max_or_zero(cache["ineq"]))
                 if m_eq:
-                    v = max(v, float(_max(np.abs(cache["eq"]), initial=0.0)))
+                    v = max(v, _abs_max_or_zero(cache["eq"]))
                 row[2] = v
         if row[1] == row[1] and row[2] == row[2]:  # both known: nothing left to complete
             self._unfilled.pop(cache.get("hist_index", -1), None)
@@ -208,11 +252,14 @@ class Oracle:
         return self._cache["f"]
 
     def _grad_at(self, x: np.ndarray) -> np.ndarray:
-        if "g" not in self._cache:
+        cache = self._cache
+        if "g" not in cache:
             p = self.problem
             t = time.perf_counter()
-            if p.gradient is not None:
-                g = np.asarray(p.gradient(x), dtype=float).reshape(-1)
+            if self._gradient is not None:
+                g = self._gradient(x)
+                if not (type(g) is np.ndarray and g.dtype is _F64 and g.ndim == 1):
+                    g = np.asarray(g, dtype=float).reshape(-1)
             else:
                 f0 = self._cache.get("f")
                 if f0 is None and p.fd == "forward":
@@ -223,8 +270,9 @@ class Oracle:
             if g.size != self._n:
                 raise ProblemError(f"{self.name}: gradient has {g.size} components, expected {self.n}")
             self.ng += 1
-            self._cache["g"] = _read_only(g)
-        return self._cache["g"]
+            g = cache["g"] = _read_only(g)
+            return g
+        return cache["g"]
 
     def _constraint_at(self, which: str, x: np.ndarray) -> np.ndarray:
         m = self._m[which]
@@ -233,7 +281,9 @@ class Oracle:
         if which not in self._cache:
             fun = self._funs[which]
             t = time.perf_counter()
-            c = np.asarray(fun(x), dtype=float).reshape(-1)
+            c = fun(x)
+            if not (type(c) is np.ndarray and c.dtype is _F64 and c.ndim == 1):
+                c = np.asarray(c, dtype=float).reshape(-1)
             self.time_in_evals += time.perf_counter() - t
             if c.size != m:
                 raise ProblemError(f"{self.name}: {which} returned {c.size} values, expected {m}")
