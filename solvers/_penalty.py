@@ -26,6 +26,7 @@ import numpy as np
 __all__ = ["Active", "PenaltyForm", "OracleForm", "PhaseRecord", "ThreePhaseResult", "three_phase"]
 
 Core = Callable[..., Any]
+_count_nonzero = np.count_nonzero
 
 
 @dataclasses.dataclass(frozen=True)
@@ -279,6 +280,42 @@ class OracleForm(PenaltyForm):
     def at(self, x: np.ndarray) -> Any:
         """One oracle entry per point, however many quantities grad_Q reads there."""
         return self.oracle.at(x)
+
+    def grad_Q(self, x: np.ndarray, mu: float, active: Active | None = None) -> np.ndarray:
+        """`PenaltyForm.grad_Q` read straight from the oracle (the step loop's hot path).
+
+        The same quantities in the same order and the same floating-point operations as
+        the generic version through ``self.at(x)``: the point is entered once, at the
+        first quantity read (none read, none entered), and each read is counted by the
+        oracle as ``OraclePoint`` counts it.  ``w.any()`` is ``np.count_nonzero(w)``
+        (NaN counts in both) and ``J.T @ w`` is ``J.T.dot(w)`` (the same BLAS call),
+        both without NumPy's Python-level wrappers.
+        """
+        o = self.oracle
+        two_mu = 2.0 * mu
+        if active is None:
+            xe = o._enter(x)
+            gr = o._grad_at(xe)
+            if self.p:
+                w = np.maximum(o._constraint_at("ineq", xe), 0.0)
+                if _count_nonzero(w):  # Jacobian only where some constraint is violated
+                    gr = gr + two_mu * o._constraint_jac_at("ineq", xe).T.dot(_weighted(w, self.alpha_g))
+        else:
+            xe = None
+            gr = np.zeros(self.n)
+            if active.ineq.any() or (active.exterior and self.p):
+                xe = o._enter(x)
+                g = o._constraint_at("ineq", xe)
+                w = np.where(active.ineq, g, np.maximum(g, 0.0) if active.exterior else 0.0)
+                if _count_nonzero(w):
+                    gr = gr + two_mu * o._constraint_jac_at("ineq", xe).T.dot(_weighted(w, self.alpha_g))
+        if self.q:
+            if xe is None:
+                xe = o._enter(x)
+            gr = gr + two_mu * o._constraint_jac_at("eq", xe).T.dot(_weighted(o._constraint_at("eq", xe), self.alpha_h))
+        if self.has_bounds:
+            gr = gr + self._bound_penalty_grad(x, two_mu, active)
+        return gr
 
 
 @dataclasses.dataclass
