@@ -27,6 +27,10 @@ __all__ = ["Active", "PenaltyForm", "OracleForm", "PhaseRecord", "ThreePhaseResu
 
 Core = Callable[..., Any]
 _count_nonzero = np.count_nonzero
+#: 0.0 as a read-only 0-d float64 array: np.maximum(v, _ZERO) is np.maximum(v, 0.0) (the same float64
+#: loop on the same values) without NumPy converting a Python scalar on every call
+_ZERO = np.zeros(())
+_ZERO.setflags(write=False)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -65,15 +69,15 @@ class _BoundsMixin:
 
     def _bound_penalty_grad(self, x: np.ndarray, two_mu: float, active: Active | None) -> np.ndarray:
         if active is None:  # exterior penalty: only violated bounds
-            return two_mu * (np.minimum(x - self.lower, 0.0) + np.maximum(x - self.upper, 0.0))
+            return two_mu * (np.minimum(x - self.lower, _ZERO) + np.maximum(x - self.upper, _ZERO))
         dl, du = x - self.lower, x - self.upper
         if active.exterior:
-            lo = np.where(active.lower, dl, np.minimum(dl, 0.0))
-            up = np.where(active.upper, du, np.maximum(du, 0.0))
+            lo = np.where(active.lower, dl, np.minimum(dl, _ZERO))
+            up = np.where(active.upper, du, np.maximum(du, _ZERO))
         else:
-            lo = np.where(active.lower, dl, 0.0)
-            up = np.where(active.upper, du, 0.0)
-        return two_mu * (np.where(np.isfinite(lo), lo, 0.0) + np.where(np.isfinite(up), up, 0.0))
+            lo = np.where(active.lower, dl, _ZERO)
+            up = np.where(active.upper, du, _ZERO)
+        return two_mu * (np.where(np.isfinite(lo), lo, _ZERO) + np.where(np.isfinite(up), up, _ZERO))
 
     def _bound_active(self, x: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
         return (self.lower - x) > tol, (x - self.upper) > tol
@@ -297,7 +301,7 @@ class OracleForm(PenaltyForm):
             xe = o._enter(x)
             gr = o._grad_at(xe)
             if self.p:
-                w = np.maximum(o._constraint_at("ineq", xe), 0.0)
+                w = np.maximum(o._constraint_at("ineq", xe), _ZERO)
                 if _count_nonzero(w):  # Jacobian only where some constraint is violated
                     gr = gr + two_mu * o._constraint_jac_at("ineq", xe).T.dot(_weighted(w, self.alpha_g))
         else:
@@ -306,7 +310,7 @@ class OracleForm(PenaltyForm):
             if active.ineq.any() or (active.exterior and self.p):
                 xe = o._enter(x)
                 g = o._constraint_at("ineq", xe)
-                w = np.where(active.ineq, g, np.maximum(g, 0.0) if active.exterior else 0.0)
+                w = np.where(active.ineq, g, np.maximum(g, _ZERO) if active.exterior else 0.0)
                 if _count_nonzero(w):
                     gr = gr + two_mu * o._constraint_jac_at("ineq", xe).T.dot(_weighted(w, self.alpha_g))
         if self.q:
