@@ -152,11 +152,26 @@ def _vec(fun: ca.Function):
     return call
 
 
+@functools.cache
+def _transposed(pid: str, which: str) -> ca.Function:
+    """The Jacobian ``which`` ("g_jac", "h_jac") of problem ``pid`` with its output transposed.
+
+    CasADi stores a matrix column-major, so the column-major (n, rows) transpose is the
+    row-major (rows, n) Jacobian: one contiguous copy instead of a strided one.  Its entries
+    are the same expression nodes (the Jacobian Function called on a symbol replays its
+    operations), so the values are bitwise those of the Jacobian Function.
+    """
+    fun = getattr(compiled(pid), which)
+    x = ca.SX.sym("x", fun.size1_in(0))
+    return ca.Function(f"{fun.name()}_t", [x], [ca.densify(fun(x).T)], ["x"], [f"{which}_t"])
+
+
 def _mat(fun: ca.Function, rows: int, cols: int):
-    run = _Numeric(fun, rows, cols)._run
+    """Row-major (rows, cols) values of ``fun``, a Function whose output is the (cols, rows) transpose."""
+    run = _Numeric(fun, cols, rows)._run
 
     def call(x: np.ndarray) -> np.ndarray:
-        return run(x).reshape(cols, rows).T.copy()  # CasADi stores column-major
+        return run(x).copy().reshape(rows, cols)  # column-major transpose = row-major matrix
 
     return call
 
@@ -193,9 +208,9 @@ def build_problem(pid: str) -> Problem:
         objective=_scalar(fs.f),
         gradient=_vec(fs.grad),
         ineq=_vec(fs.g) if fs.m else None,
-        ineq_jacobian=_mat(fs.g_jac, fs.m, fs.n) if fs.m else None,
+        ineq_jacobian=_mat(_transposed(pid, "g_jac"), fs.m, fs.n) if fs.m else None,
         eq=_vec(fs.h) if fs.q else None,
-        eq_jacobian=_mat(fs.h_jac, fs.q, fs.n) if fs.q else None,
+        eq_jacobian=_mat(_transposed(pid, "h_jac"), fs.q, fs.n) if fs.q else None,
         lower=_bounds(e["lower"], -np.inf),
         upper=_bounds(e["upper"], np.inf),
         f_ref=float(e["f_star"]),
