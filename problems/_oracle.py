@@ -64,6 +64,7 @@ def _read_only(a: np.ndarray) -> np.ndarray:
 _EMPTY = _read_only(np.zeros(0))
 _max = np.maximum.reduce  # ndarray.max without its Python-level wrapper (same reduction)
 _F64 = np.dtype(float)
+_JAC_KEY = {"ineq": "ineq_jac", "eq": "eq_jac"}
 _isfinite, _isnan = math.isfinite, math.isnan
 
 
@@ -135,8 +136,8 @@ class Oracle:
         self._jacs = {"ineq": problem.ineq_jacobian, "eq": problem.eq_jacobian}
         self._constrained = bool(problem.n_ineq or problem.n_eq)
         self._m_ineq, self._m_eq = problem.n_ineq, problem.n_eq
+        self._raw_key = self._n <= RAW_KEY_MAX_N
         self._gradient = problem.gradient
-        self._lower_list, self._upper_list = self._lower.tolist(), self._upper.tolist()
         self._last: np.ndarray = problem.x0.copy()
 
     # ------------------------------------------------------------------ structure
@@ -185,7 +186,7 @@ class Oracle:
             x = x.reshape(-1)
         if x.size != self._n:
             raise ProblemError(f"{self.name}: point has {x.size} components, expected n = {self.n}")
-        k = _key(x)
+        k = x.tobytes() if self._raw_key else _key(x)  # _key(x), its test made once per oracle
         if k != self._last_key:
             if k in self._seen:
                 self._cache = {}
@@ -295,13 +296,15 @@ class Oracle:
         m = self._m[which]
         if m == 0:
             return np.zeros((0, self._n))
-        key = which + "_jac"
+        key = _JAC_KEY[which]
         if key not in self._cache:
             p = self.problem
             jac = self._jacs[which]
             t = time.perf_counter()
             if jac is not None:
-                J = np.asarray(jac(x), dtype=float).reshape(m, self._n)
+                J = jac(x)
+                if not (type(J) is np.ndarray and J.dtype is _F64 and J.shape == (m, self._n)):
+                    J = np.asarray(J, dtype=float).reshape(m, self._n)
             else:
                 c0 = self._constraint_at(which, x) if p.fd == "forward" else None
                 J, evals = fd_jacobian(getattr(p, which), x, c0, p.fd_step, p.fd)
