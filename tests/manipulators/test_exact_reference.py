@@ -35,3 +35,6 @@ def test_rpr3_reference_reproduces():
     for kind, pname in (("so", "P2"), ("d", "P1")):
         fresh = exact_optimum(kind, pname, n_starts=N_STARTS)
         assert fresh["kinv"] == pytest.approx(stored[f"{kind}/{pname}"]["kinv"], abs=1e-9)
+        # the local optimum from the suite's start: the best found for SO P2, below it for D P1
+        assert fresh["local_kinv"] == pytest.approx(stored[f"{kind}/{pname}"]["local_kinv"], abs=1e-9)
+        assert fresh["local_kinv"] <= fresh["kinv"] + 1e-9
