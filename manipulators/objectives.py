@@ -24,8 +24,8 @@ from .prescribed import Prescribed
 from .workspace import Workspace
 from .workspace._polygon import as_points
 
-__all__ = ["triangle_area", "polar_angles", "delta_areas", "delta_areas_exact", "enclosure_constraint",
-           "min_inverse_condition", "radial_gaps"]
+__all__ = ["triangle_area", "polar_angles", "delta_areas", "delta_areas_checked", "delta_areas_exact",
+           "winding_number", "enclosure_constraint", "min_inverse_condition", "radial_gaps"]
 
 
 def triangle_area(L, M, N) -> np.ndarray:
@@ -101,6 +101,41 @@ def delta_areas(ws: Workspace | np.ndarray, prescribed: Prescribed) -> tuple[flo
     dwc += np.where(case_c, triangle_area(c2, p2, cross), 0.0) + np.where(case_d, triangle_area(p1, c1, cross), 0.0)
     dwp += np.where(case_c, triangle_area(c1, p1, cross), 0.0) + np.where(case_d, triangle_area(p2, c2, cross), 0.0)
     return float(dwp.sum()), float(dwc.sum())
+
+
+def winding_number(points, centre) -> int:
+    """How many times the closed polygon ``points`` (k, 2) winds around ``centre`` (0: outside)."""
+    p = as_points(points) - np.asarray(centre, dtype=float)
+    if p.shape[0] < 3:
+        return 0
+    a = np.arctan2(p[:, 1], p[:, 0])
+    da = np.diff(a, append=a[:1])
+    return int(np.rint(np.sum((da + np.pi) % (2 * np.pi) - np.pi) / (2 * np.pi)))
+
+
+def delta_areas_checked(ws: Workspace | np.ndarray, prescribed: Prescribed) -> tuple[float, float]:
+    """(dW_p, dW_c) by the triangle scheme (eq. 4.9) where it can measure them, by polygon
+    geometry of the same chord boundary where it cannot [OWN].
+
+    The scheme sums triangles fanned from W_p's centre O' to consecutive boundary points,
+    so it measures area(W_p minus W_c) only if the computed boundary winds around O'. Where
+    it does not (O' outside W_c: a workspace beside or below W_p), every boundary point can
+    lie beyond r_p, and the scheme returns dW_p = 0 with W_p entirely uncovered: a spurious
+    feasible design of (4.14) and (4.16) with a smaller objective than any true one, which
+    the better optimizers find. There both areas are the polygon differences of the chord
+    polygon (`delta_areas_exact`); wherever the boundary winds around O' the values are
+    the thesis's scheme, bit for bit (so the thesis algorithms' runs, which stay there, are
+    unchanged). The 3-RPR formulation makes the same check per slice (`rpr3_suite`).
+    """
+    bc = ws.boundary if isinstance(ws, Workspace) else as_points(ws)
+    if bc.shape[0] < 3 or winding_number(bc, prescribed.centre) != 0:
+        return delta_areas(bc, prescribed)
+    return delta_areas_exact(_polygon(bc), prescribed)
+
+
+def _polygon(bc: np.ndarray) -> shapely.Geometry:
+    poly = shapely.Polygon(bc)
+    return poly if poly.is_valid else poly.buffer(0)
 
 
 def delta_areas_exact(region: shapely.Geometry | Workspace, prescribed: Prescribed | shapely.Geometry,

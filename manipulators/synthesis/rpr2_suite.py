@@ -15,8 +15,13 @@ differences with the thesis's scheme and interval):
   angles of the computed boundary points (Section 4.7.2), which move with the
   discretization; `evaluate` reports both (they differ by ~1e-5).
 
-dW_p, dW_c and g use the thesis's triangle scheme (eq. 4.9) on the chord workspace;
-`evaluate` also returns the exact values (shapely, exact annulus geometry) for the tables.
+dW_p, dW_c and g use the thesis's triangle scheme (eq. 4.9) on the chord workspace, checked
+(`objectives.delta_areas_checked` [OWN]): where the computed boundary does not wind around
+W_p's centre, or the scheme claims enclosure that the polygons deny, the scheme cannot measure
+the areas and the polygon differences of the same chord boundary are used. Without the check,
+designs whose workspace lies beside W_p have h = dW_p = 0 and dW_c < 0.5, below the exact
+problem's optimum 2.31, and the better optimizers converged there with W_p entirely
+uncovered. `evaluate` also returns the exact values (shapely, exact annulus geometry).
 
 Infeasible designs never raise: a design with no workspace above the base line, or an
 invalid one (l_min <= 0, xA == xB, non-finite), has the *empty* workspace, so
@@ -34,7 +39,7 @@ import numpy as np
 
 from problems import Case, Problem, Suite
 
-from ..objectives import delta_areas, delta_areas_exact, enclosure_constraint, min_inverse_condition, polar_angles
+from ..objectives import delta_areas_checked, delta_areas_exact, enclosure_constraint, min_inverse_condition, polar_angles
 from ..prescribed import P1, PRESCRIBED, Prescribed
 from ..rpr2 import RPR2, inverse_condition
 from ..workspace import Workspace
@@ -116,7 +121,7 @@ def o_problem(start: str = "SP1", prescribed: Prescribed = P1, chord: float | No
 
     def f(d):
         _, w = ws(d)
-        dwp, dwc = delta_areas(w, prescribed)
+        dwp, dwc = delta_areas_checked(w, prescribed)
         return 0.5 * dwp + 0.5 * dwc
 
     return Problem(name=f"rpr2-o-{start}", x0=STARTS[start], objective=f, fd=s["fd"], fd_step=s["fd_step"],
@@ -128,9 +133,14 @@ def e_problem(start: str = "SP1", prescribed: Prescribed = P1, chord: float | No
     """E synthesis (4.14): min dW_c subject to h = dW_p = 0 (triangle scheme)."""
     s = SETTINGS["e"]
     ws = _Workspaces(design_o, chord or s["chord"])
+    memo: DesignCache[tuple[float, float]] = DesignCache(16)  # f and h at one design share the areas
+
+    def areas(d) -> tuple[float, float]:
+        return memo.get(d, lambda x: delta_areas_checked(ws(x)[1], prescribed))
+
     return Problem(name=f"rpr2-e-{start}", x0=STARTS[start],
-                   objective=lambda d: delta_areas(ws(d)[1], prescribed)[1],
-                   eq=lambda d: np.array([delta_areas(ws(d)[1], prescribed)[0]]),
+                   objective=lambda d: areas(d)[1],
+                   eq=lambda d: np.array([areas(d)[0]]),
                    fd=s["fd"], fd_step=s["fd_step"], n_eq=1,
                    source="Hay 2003, Sec. 4.6, eq. (4.14)", tags=("manipulator", "rpr2", "E"),
                    meta={"prescribed": prescribed.name, "chord": ws.chord, "kind": "e"})
@@ -160,7 +170,8 @@ def p_problem(prescribed: Prescribed | str = "P1", chord: float | None = None) -
         return _p_objective(d, None, P)
 
     def g(d):
-        return np.array([enclosure_constraint(ws(d)[1], P)])
+        w = ws(d)[1]
+        return np.array([enclosure_constraint(w, P, delta_areas_checked(w, P)[0])])
 
     return Problem(name=f"rpr2-p{P.name[-1]}", x0=P_START, objective=f, ineq=g, n_ineq=1,
                    fd=s["fd"], fd_step=s["fd_step"],
@@ -184,7 +195,7 @@ def evaluate(kind: str, d, prescribed: Prescribed | str = "P1", chord: float | N
         raise ValueError(f"kind must be one of 'o', 'e', 'p', got {kind!r}")
     build = design_p if k == "p" else design_o
     m, w = _Workspaces(build, chord or SETTINGS[k]["chord"])(d)
-    dwp, dwc = delta_areas(w, P)
+    dwp, dwc = delta_areas_checked(w, P)
     out: dict[str, Any] = {"dwp": dwp, "dwc": dwc, "g": enclosure_constraint(w, P, dwp), "h": dwp,
                            "n_b": w.n_boundary, "area": w.area}
     out["f"] = {"o": 0.5 * dwp + 0.5 * dwc, "e": dwc, "p": -_p_objective(d, None, P)}[k]

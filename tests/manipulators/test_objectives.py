@@ -57,3 +57,38 @@ def test_e_synthesis_point_of_table_4_7():
     assert dwc == pytest.approx(2.885, abs=2e-3)
     assert dwp == pytest.approx(0.007, abs=1e-3)
     assert delta_areas_exact(r.exact_region(), P1)[1] == pytest.approx(2.884, abs=1e-3)
+
+
+def test_winding_number():
+    from manipulators.objectives import winding_number
+
+    square = [[1, 1], [-1, 1], [-1, -1], [1, -1]]
+    assert winding_number(square, [0, 0]) == 1
+    assert winding_number(square[::-1], [0, 0]) == -1
+    assert winding_number(square, [3, 0]) == 0
+
+
+def test_checked_areas_see_a_workspace_beside_the_prescribed_one():
+    # Dynamic-Q+'s former E-synthesis end from SP3: the chord boundary lies beside W_p and does
+    # not wind around its centre; the triangle scheme reports W_p enclosed (dW_p = 0)
+    from manipulators.objectives import delta_areas_checked, winding_number
+    from manipulators.synthesis.rpr2_suite import design_o
+
+    ws = design_o([-1.54, 0.0677, 4.389, 1.530, 2.500]).workspace(0.1)
+    assert winding_number(ws.boundary, P1.centre) == 0
+    assert delta_areas(ws, P1)[0] == 0.0
+    dwp, dwc = delta_areas_checked(ws, P1)
+    assert dwp == pytest.approx(P1.area(), rel=1e-3)  # W_p entirely uncovered
+    assert (dwp, dwc) == pytest.approx(delta_areas_exact(ws, P1), rel=1e-12)
+
+
+@pytest.mark.parametrize("d", [(-2.0, -0.075, 2.0, 3.0, 3.0), (-4.803, -2.181, 4.803, 5.652, 5.652),
+                               (-4.152, -2.461, 4.060, 5.491, 5.441)])
+def test_checked_areas_are_the_triangle_scheme_where_it_measures(d):
+    # a boundary around O' (SP1, not enclosing; the exact-model local minimum and the thesis's
+    # E optimum, enclosing): the thesis's values, bit for bit
+    from manipulators.objectives import delta_areas_checked
+    from manipulators.synthesis.rpr2_suite import design_o
+
+    ws = design_o(d).workspace(0.1)
+    assert delta_areas_checked(ws, P1) == delta_areas(ws, P1)

@@ -97,3 +97,15 @@ def test_table_rows_follow_the_suite_solver_order_not_completion_order():
     runs = pd.DataFrame({"problem": "rpr2-e", "start": "SP1", "solver": done})
     got = list(_ours(runs, "rpr2-e", "SP1")["solver"])
     assert got == sorted(done[:2] + done[3:], key=SOLVERS.index) + ["my-solver"]
+
+
+def test_e_and_p_constraints_see_a_workspace_beside_the_prescribed_one():
+    # designs whose workspace lies beside W_p: the triangle scheme alone reported h = 0 there
+    # (Dynamic-Q+'s and SLSQP's former E ends from SP3), now h = area(W_p) uncovered
+    from manipulators.prescribed import P1
+    from manipulators.synthesis.rpr2_suite import e_problem, evaluate
+
+    for d in ([-1.54, 0.0677, 4.389, 1.530, 2.500], [1.049, 1.505, 2.066, 0.2659, 0.9543]):
+        h = e_problem("SP3").eq(np.asarray(d))[0]
+        assert h == pytest.approx(P1.area(), rel=1e-3)
+        assert evaluate("e", d)["h"] == pytest.approx(h)
