@@ -39,7 +39,13 @@ import numpy as np
 
 from problems import Case, Problem, Suite
 
-from ..objectives import delta_areas_checked, delta_areas_exact, enclosure_constraint, min_inverse_condition, polar_angles
+from ..objectives import (
+    delta_areas_checked,
+    delta_areas_exact,
+    enclosure_constraint,
+    min_inverse_condition,
+    polar_angles,
+)
 from ..prescribed import P1, PRESCRIBED, Prescribed
 from ..rpr2 import RPR2, inverse_condition
 from ..workspace import Workspace
