@@ -134,6 +134,7 @@ def delta_areas_checked(ws: Workspace | np.ndarray, prescribed: Prescribed) -> t
 
 
 def _polygon(bc: np.ndarray) -> shapely.Geometry:
+    """The chord polygon; a self-touching trace made valid by a zero buffer."""
     poly = shapely.Polygon(bc)
     return poly if poly.is_valid else poly.buffer(0)
 

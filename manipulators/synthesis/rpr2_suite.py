@@ -17,8 +17,8 @@ differences with the thesis's scheme and interval):
 
 dW_p, dW_c and g use the thesis's triangle scheme (eq. 4.9) on the chord workspace, checked
 (`objectives.delta_areas_checked` [OWN]): where the computed boundary does not wind around
-W_p's centre, or the scheme claims enclosure that the polygons deny, the scheme cannot measure
-the areas and the polygon differences of the same chord boundary are used. Without the check,
+W_p's centre the scheme cannot measure the areas, and the polygon differences of the same
+chord boundary are used. Without the check,
 designs whose workspace lies beside W_p have h = dW_p = 0 and dW_c < 0.5, below the exact
 problem's optimum 2.31, and the better optimizers converged there with W_p entirely
 uncovered. `evaluate` also returns the exact values (shapely, exact annulus geometry).
