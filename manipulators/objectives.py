@@ -22,7 +22,7 @@ import shapely
 
 from .prescribed import Prescribed
 from .workspace import Workspace
-from .workspace._polygon import as_points
+from .workspace._polygon import as_points, to_shapely
 
 __all__ = ["triangle_area", "polar_angles", "delta_areas", "delta_areas_checked", "delta_areas_exact",
            "winding_number", "enclosure_constraint", "min_inverse_condition", "radial_gaps"]
@@ -130,13 +130,7 @@ def delta_areas_checked(ws: Workspace | np.ndarray, prescribed: Prescribed) -> t
     bc = ws.boundary if isinstance(ws, Workspace) else as_points(ws)
     if bc.shape[0] < 3 or winding_number(bc, prescribed.centre) != 0:
         return delta_areas(bc, prescribed)
-    return delta_areas_exact(_polygon(bc), prescribed)
-
-
-def _polygon(bc: np.ndarray) -> shapely.Geometry:
-    """The chord polygon; a self-touching trace made valid by a zero buffer."""
-    poly = shapely.Polygon(bc)
-    return poly if poly.is_valid else poly.buffer(0)
+    return delta_areas_exact(to_shapely(bc), prescribed)
 
 
 def delta_areas_exact(region: shapely.Geometry | Workspace, prescribed: Prescribed | shapely.Geometry,
