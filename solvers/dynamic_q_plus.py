@@ -8,7 +8,8 @@ Changed (see docs/thesis_solvers.md, "Dynamic-Q+"):
    started from eq. (3.6)'s spherical curvature (options: one spherical or a diagonal
    curvature instead); the constraints are linearized, so the subproblem is a convex QP;
 2. the subproblem is solved exactly (`solvers._qp_subproblem`, Clarabel) instead of by LFOPC's
-   penalty compromise, with elastic l1 slacks so it is always feasible;
+   penalty compromise, with elastic l1 slacks so it is always feasible, and the penalty weight
+   steered (Byrd, Nocedal & Waltz) so that each step keeps reducing the linearized infeasibility;
 3. the move limit is a box trust region adapted by the ratio of actual to predicted reduction
    of the l1 exact-penalty merit f + mu (sum max(g,0) + sum |h|), with Fletcher's
    second-order correction of rejected steps along curved constraints;
@@ -96,6 +97,9 @@ class DynamicQPlus(AbstractSolver):
                                            "[OWN] Fletcher's second-order correction")
     memory: int = option(4, "non-monotone merit: compare with the worst of this many last accepted points",
                          "[OWN] (Grippo-Lampariello-Lucidi style; 1 = monotone)")
+    steering: bool = option(True, "raise the penalty weight until the step achieves at least a tenth of the "
+                            "linearized infeasibility reduction the move limit allows (one more QP, only while "
+                            "the elastic slacks are in use)", "[OWN] Byrd-Nocedal-Waltz steering rule")
     max_iter: int = option(200, "maximum number of oracle points (iterations incl. rejected trials)", "[OWN]")
 
     def check_together(self) -> None:  # called by AbstractSolver.__post_init__ after the per-option checks
@@ -193,6 +197,33 @@ class DynamicQPlus(AbstractSolver):
         # LAPACK's Cholesky (as np.linalg.cholesky) called directly: info > 0 = not positive definite
         return dpotrf(shifted, lower=1, clean=0, overwrite_a=1)[1] == 0
 
+    def _steer(self, res, mu: float, ev: dict[str, Any], sigma, d_lo: np.ndarray, d_up: np.ndarray):
+        """[OWN] Steering rule for the penalty weight (Byrd, Nocedal & Waltz 2008, eps1 = 0.1).
+
+        While the elastic slacks are in use, the step for the current mu may trade feasibility
+        for f (rpr3 SO/D P1: mu = 10 throughout, the violation rising from 0.03 to 0.06 until
+        the move limit collapsed).  The ideal reduction of the linearized l1 infeasibility
+        within the move limit is that of the feasibility step (the QP without f, slacks
+        weighted 1e6); mu is raised tenfold until the step achieves a tenth of it.
+        """
+        def lin_infeas(d: np.ndarray) -> float:
+            return float(np.maximum(ev["ineq"] + ev["ineq_jac"] @ d, 0.0).sum()
+                         + np.abs(ev["eq"] + ev["eq_jac"] @ d).sum())
+
+        l0 = ev["l1"]
+        feas = solve_elastic_qp(np.zeros_like(ev["g"]), sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
+                                d_lo, d_up, 1e6)
+        if not feas.ok:
+            return res, mu
+        ideal = l0 - lin_infeas(feas.d)
+        while ideal > 0.0 and l0 - lin_infeas(res.d) < 0.1 * ideal and mu < MU_MAX:
+            mu *= 10.0
+            new = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
+            if not new.ok:
+                break
+            res = new
+        return res, mu
+
     def _restart_before_stop(self, restarted: bool, n_upd: int) -> bool:
         """[OWN] Restart the quasi-Newton matrix once instead of stopping.
 
@@ -256,6 +287,8 @@ class DynamicQPlus(AbstractSolver):
                 mu = 2.0 * mult
                 res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
                                        np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+            if self.steering and res.elastic > self.eps_c and mu < MU_MAX:
+                res, mu = self._steer(res, mu, ev, sigma, np.maximum(lo - x, -rho), np.minimum(up - x, rho))
             if self.constraint_curvature and (np.any(bq) or np.any(cq)):
                 # [OWN] the thesis's constraint curvatures (3.6) as a model-based second-order
                 # correction: g~_j(d) = g_j + grad g_j^T d + b_j/2 ||d||^2 with ||d|| frozen at the

@@ -179,15 +179,11 @@ class _Evaluator:
         return {"g": S if S > 0 else -r * r, "dwp": dwp, "r": r, "empty": False, "n_b": n_b}
 
     def _dwp_polygon(self, w: Workspace) -> float:
-        """area(W_p minus the chord polygon of W_c), by shapely (an invalid polygon is buffered)."""
-        import shapely
-
+        """area(W_p minus the chord polygon of W_c), by shapely (`Workspace.polygon`: an invalid
+        outline is repaired with make_valid, as everywhere else in the project)."""
         if self._wp is None:
             self._wp = self.P.polygon(720)
-        poly = shapely.Polygon(w.boundary)
-        if not poly.is_valid:
-            poly = poly.buffer(0)
-        return float(self._wp.difference(poly).area)
+        return float(self._wp.difference(w.polygon()).area)
 
     def _violation(self, m: RPR3 | None, d) -> float:
         if m is None:

@@ -67,6 +67,33 @@ def test_elastic_mode_when_linearization_infeasible_in_box():
                                                np.zeros(0), np.zeros((0, 2)), 10.0))
 
 
+def _point(gf, g0, Jg):
+    ev = {"g": np.asarray(gf, float), "ineq": np.asarray(g0, float), "ineq_jac": np.asarray(Jg, float),
+          "eq": np.zeros(0), "eq_jac": np.zeros((0, len(gf)))}
+    ev["l1"] = float(np.maximum(ev["ineq"], 0.0).sum())
+    return ev
+
+
+def test_steering_raises_mu_when_the_step_trades_feasibility_for_f():
+    """g = 1 + d <= 0, f slope -100, |d| <= 0.5: with mu = 10 the QP steps to +0.5 (more infeasible);
+    the feasibility step (-0.5) shows 0.5 of linearized reduction is possible, so mu rises until the
+    step takes at least a tenth of it (here: all of it)."""
+    ev = _point([-100.0], [1.0], [[1.0]])
+    lo, up = np.array([-0.5]), np.array([0.5])
+    res0 = solve_elastic_qp(ev["g"], np.eye(1), ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], lo, up, 10.0)
+    assert res0.d[0] == pytest.approx(0.5, abs=1e-7)
+    res, mu = DynamicQPlus()._steer(res0, 10.0, ev, np.eye(1), lo, up)
+    assert mu >= 100.0 and res.d[0] == pytest.approx(-0.5, abs=1e-7)
+
+
+def test_steering_keeps_mu_when_the_step_already_reduces_infeasibility():
+    ev = _point([-1.0], [1.0], [[1.0]])
+    lo, up = np.array([-0.5]), np.array([0.5])
+    res0 = solve_elastic_qp(ev["g"], np.eye(1), ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], lo, up, 10.0)
+    res, mu = DynamicQPlus()._steer(res0, 10.0, ev, np.eye(1), lo, up)
+    assert mu == 10.0 and res is res0
+
+
 def test_trust_region_rejects_and_shrinks():
     """On HS27 (a curved equality) the ratio test rejects some trial points, and every rejection shrinks rho."""
     r = solve(hs.problem("27"), "dynamic-q-plus")
