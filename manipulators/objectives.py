@@ -25,7 +25,7 @@ from .workspace import Workspace
 from .workspace._polygon import as_points, to_shapely
 
 __all__ = ["triangle_area", "polar_angles", "delta_areas", "delta_areas_checked", "delta_areas_exact",
-           "winding_number", "enclosure_constraint", "min_inverse_condition", "radial_gaps"]
+           "star_shaped", "enclosure_constraint", "min_inverse_condition", "radial_gaps"]
 
 
 def triangle_area(L, M, N) -> np.ndarray:
@@ -103,14 +103,18 @@ def delta_areas(ws: Workspace | np.ndarray, prescribed: Prescribed) -> tuple[flo
     return float(dwp.sum()), float(dwc.sum())
 
 
-def winding_number(points, centre) -> int:
-    """How many times the closed polygon ``points`` (k, 2) winds around ``centre`` (0: outside)."""
+def star_shaped(points, centre) -> bool:
+    """True when every ray from ``centre`` crosses the closed polygon ``points`` exactly once:
+    it winds once around ``centre`` and its polar angle moves the same way along every edge.
+    The premise of the triangle scheme (4.9), whose fan of triangles from O' covers W_c once
+    only then."""
     p = as_points(points) - np.asarray(centre, dtype=float)
     if p.shape[0] < 3:
-        return 0
+        return False
     a = np.arctan2(p[:, 1], p[:, 0])
-    da = np.diff(a, append=a[:1])
-    return int(np.rint(np.sum((da + np.pi) % (2 * np.pi) - np.pi) / (2 * np.pi)))
+    da = (np.diff(a, append=a[:1]) + np.pi) % (2 * np.pi) - np.pi
+    turn = float(np.sum(da))
+    return bool(abs(abs(turn) - 2 * np.pi) < 1e-6 and (np.all(da > 0) if turn > 0 else np.all(da < 0)))
 
 
 def delta_areas_checked(ws: Workspace | np.ndarray, prescribed: Prescribed) -> tuple[float, float]:
@@ -118,17 +122,24 @@ def delta_areas_checked(ws: Workspace | np.ndarray, prescribed: Prescribed) -> t
     geometry of the same chord boundary where it cannot [OWN].
 
     The scheme sums triangles fanned from W_p's centre O' to consecutive boundary points,
-    so it measures area(W_p minus W_c) only if the computed boundary winds around O'. Where
-    it does not (O' outside W_c: a workspace beside or below W_p), every boundary point can
-    lie beyond r_p, and the scheme returns dW_p = 0 with W_p entirely uncovered: a spurious
-    feasible design of (4.14) and (4.16) with a smaller objective than any true one, which
-    the better optimizers find. There both areas are the polygon differences of the chord
-    polygon (`delta_areas_exact`); wherever the boundary winds around O' the values are
-    the thesis's scheme, bit for bit (so the thesis algorithms' runs, which stay there, are
-    unchanged). The 3-RPR formulation makes the same check per slice (`rpr3_suite`).
+    so it measures area(W_p minus W_c) only if every ray from O' crosses the computed
+    boundary once (`star_shaped`). Where the boundary does not wind around O' (a workspace
+    beside or below W_p), every boundary point can lie beyond r_p, and the scheme returns
+    dW_p = 0 with W_p entirely uncovered: a spurious feasible design of (4.14) and (4.16)
+    with a smaller objective than any true one, which the better optimizers find. Where it
+    winds around O' but folds back (rays crossing it three times), the fan counts some
+    triangles twice: on a 3-RPR dextrous workspace the scheme gave dW_p = 0.017 where the
+    polygons give 0.110, and it jumped to the true value as O' crossed the boundary, so
+    finite differences across the jump fed the optimizers gradients of the wrong sign.
+    In both cases the areas are the polygon differences of the chord polygon
+    (`delta_areas_exact`); wherever the boundary is star-shaped about O' they are the
+    thesis's scheme, bit for bit. The 3-RPR formulation makes the same check per slice
+    (`rpr3_suite`).
     """
     bc = ws.boundary if isinstance(ws, Workspace) else as_points(ws)
-    if bc.shape[0] < 3 or winding_number(bc, prescribed.centre) != 0:
+    if bc.shape[0] >= 3 and star_shaped(bc, prescribed.centre):
+        return delta_areas(bc, prescribed)
+    if bc.shape[0] < 3:
         return delta_areas(bc, prescribed)
     return delta_areas_exact(to_shapely(bc), prescribed)
 

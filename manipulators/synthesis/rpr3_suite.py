@@ -40,7 +40,7 @@ import numpy as np
 
 from problems import Case, Problem, Suite
 
-from ..objectives import delta_areas, delta_areas_exact, min_inverse_condition, polar_angles, radial_gaps
+from ..objectives import delta_areas, delta_areas_exact, min_inverse_condition, polar_angles, radial_gaps, star_shaped
 from ..prescribed import Prescribed, chapter5_workspaces
 from ..rpr3 import RPR3
 from ..workspace import Workspace
@@ -162,7 +162,7 @@ class _Evaluator:
         for w, e in zip(wss, empty):
             if e:
                 dwp.append(area + viol)
-            elif w.info.get("centre_inside", True):
+            elif w.info.get("centre_inside", True) and star_shaped(w.boundary, self.P.centre):
                 dwp.append(delta_areas(w, self.P)[0])
             else:
                 dwp.append(self._dwp_polygon(w))

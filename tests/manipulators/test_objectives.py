@@ -59,23 +59,28 @@ def test_e_synthesis_point_of_table_4_7():
     assert delta_areas_exact(r.exact_region(), P1)[1] == pytest.approx(2.884, abs=1e-3)
 
 
-def test_winding_number():
-    from manipulators.objectives import winding_number
+def test_star_shaped():
+    from manipulators.objectives import star_shaped
 
     square = [[1, 1], [-1, 1], [-1, -1], [1, -1]]
-    assert winding_number(square, [0, 0]) == 1
-    assert winding_number(square[::-1], [0, 0]) == -1
-    assert winding_number(square, [3, 0]) == 0
+    assert star_shaped(square, [0, 0]) and star_shaped(square[::-1], [0, 0])
+    assert not star_shaped(square, [3, 0])  # outside: winds 0 times
+    # a C shape around the origin: winds once, but rays to the left cross it three times
+    c_shape = [[2, -2], [2, 2], [-2, 2], [-2, 1], [1, 1], [1, -1], [-2, -1], [-2, -2]]
+    assert not star_shaped(c_shape, [1.5, 0])
+    assert not star_shaped(c_shape, [1.5, 1.5])  # from the corner, rays through the gap hit the lower arm
+    assert star_shaped(square, [0.9, -0.5])  # convex: from any inside point
+    assert not star_shaped(square[:2], [0, 0])  # fewer than 3 points
 
 
 def test_checked_areas_see_a_workspace_beside_the_prescribed_one():
     # Dynamic-Q+'s former E-synthesis end from SP3: the chord boundary lies beside W_p and does
     # not wind around its centre; the triangle scheme reports W_p enclosed (dW_p = 0)
-    from manipulators.objectives import delta_areas_checked, winding_number
+    from manipulators.objectives import delta_areas_checked, star_shaped
     from manipulators.synthesis.rpr2_suite import design_o
 
     ws = design_o([-1.54, 0.0677, 4.389, 1.530, 2.500]).workspace(0.1)
-    assert winding_number(ws.boundary, P1.centre) == 0
+    assert not star_shaped(ws.boundary, P1.centre)
     assert delta_areas(ws, P1)[0] == 0.0
     dwp, dwc = delta_areas_checked(ws, P1)
     assert dwp == pytest.approx(P1.area(), rel=1e-3)  # W_p entirely uncovered

@@ -138,3 +138,17 @@ def test_exact_optimum_global_stage_so_p2():
 
     out = exact_optimum("so", "P2", n_starts=0)
     assert out["de_polished"] >= 0.932 and out["kinv"] >= out["de_polished"] and out["enclosed"]
+
+
+def test_dextrous_dwp_has_no_jump_where_the_centre_leaves_the_workspace():
+    # A Dynamic-Q+ iterate of D/P1: the chord boundary winds once around W_p's centre but
+    # folds back, so the triangle scheme gave dW_p = 0.017 (polygons: 0.110) until O' left the
+    # workspace between y_C + 9e-4 and + 1e-3, where g jumped to 0.1105; central differences
+    # (h = 1e-3) across the jump gave dg/dy_C = +38 where the slope is -0.2
+    from manipulators.synthesis.rpr3_suite import PRESCRIBED3, _Evaluator
+
+    ev = _Evaluator("d", PRESCRIBED3["P1"])
+    x = np.array([-1.0647, 0.428, 1.2438, 1.7791, 0.8261])
+    g = [ev.parts(x + np.array([0.0, t, 0.0, 0.0, 0.0]))["g"] for t in (0.0, 9e-4, 1e-3)]
+    assert g[0] == pytest.approx(0.1101, abs=1e-3)
+    assert abs(g[2] - g[1]) < 1e-3
