@@ -22,10 +22,10 @@ from dataclasses import dataclass
 import clarabel
 import numpy as np
 
-__all__ = ["ElasticQPResult", "l1_model", "solve_elastic_qp"]
+__all__ = ["ElasticQPResult", "l1_model", "linearized_violations", "solve_elastic_qp"]
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)
 class ElasticQPResult:
     """Step d, multipliers lam (ineq, >= 0) and nu (eq), the elastic slack total and the model value."""
 
@@ -37,13 +37,21 @@ class ElasticQPResult:
     ok: bool
 
 
+def linearized_violations(d, g0, Jg, h0, Jh) -> tuple[float, float]:
+    """(sum max(g + Jg d, 0), sum |h + Jh d|): the l1 infeasibility of the linearized
+    inequality and equality constraints at step d."""
+    return (float(np.maximum(g0 + Jg @ d, 0.0).sum()) if g0.size else 0.0,
+            float(np.abs(h0 + Jh @ d).sum()) if h0.size else 0.0)
+
+
 def l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu) -> float:
     """Model of the l1 merit f + mu (sum max(g,0) + sum |h|) minus f(x), at step d."""
     v = float(gf @ d) + 0.5 * float(d @ _hess_times(sigma, d))
+    ineq, eq = linearized_violations(d, g0, Jg, h0, Jh)
     if g0.size:
-        v += mu * float(np.maximum(g0 + Jg @ d, 0.0).sum())
+        v += mu * ineq
     if h0.size:
-        v += mu * float(np.abs(h0 + Jh @ d).sum())
+        v += mu * eq
     return v
 
 
@@ -74,22 +82,22 @@ def _settings() -> clarabel.DefaultSettings:
     return settings
 
 
-@dataclass(frozen=True)
 class _CscView:
     """The CSC arrays of a matrix, as Clarabel reads them (format, shape, data, indices,
     indptr).  scipy.sparse's constructor validates and re-types the index arrays on every
     call, which cost more than the interior-point solve of these small QPs; the arrays
     here are built canonical (sorted, int64, no duplicates) by `_csc`, so nothing needs
-    checking.  `tests/solvers/test_dynamic_q_plus.py` checks the view against
-    ``scipy.sparse.csc_matrix``."""
+    checking.  A plain class with slots: a frozen dataclass's constructor alone cost a
+    few microseconds per QP.  `tests/solvers/test_dynamic_q_plus.py` checks the view
+    against ``scipy.sparse.csc_matrix``."""
 
-    shape: tuple[int, int]
-    data: np.ndarray
-    indices: np.ndarray
-    indptr: np.ndarray
-    format: str = "csc"
-    has_sorted_indices: bool = True
-    has_canonical_format: bool = True
+    __slots__ = ("shape", "data", "indices", "indptr")
+    format = "csc"
+    has_sorted_indices = True
+    has_canonical_format = True
+
+    def __init__(self, shape: tuple[int, int], data: np.ndarray, indices: np.ndarray, indptr: np.ndarray) -> None:
+        self.shape, self.data, self.indices, self.indptr = shape, data, indices, indptr
 
     @property
     def nnz(self) -> int:
@@ -110,9 +118,9 @@ def _pattern_csc(shape: tuple[int, int], vals: np.ndarray, rows: np.ndarray, col
     """CSC arrays of a matrix given by a fixed pattern (``rows``, ``cols`` in CSC order, its
     column pointers ``indptr``) and this call's values: the same arrays as ``_csc`` of the
     dense matrix, i.e. exact zeros dropped (only then is the column count recomputed)."""
-    keep = vals != 0.0
-    if keep.all():  # the usual case: a quasi-Newton matrix and most Jacobians are dense
+    if np.count_nonzero(vals) == vals.size:  # the usual case: a quasi-Newton matrix and most Jacobians are dense
         return _CscView(shape, vals, rows, indptr)
+    keep = vals != 0.0
     indptr = np.zeros(shape[1] + 1, dtype=np.int64)
     np.cumsum(np.bincount(cols[keep], minlength=shape[1]), out=indptr[1:])
     return _CscView(shape, vals[keep], rows[keep], indptr)

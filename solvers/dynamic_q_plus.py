@@ -29,7 +29,7 @@ from scipy.linalg.lapack import dpotrf
 from problems import Oracle
 
 from ._base import AbstractSolver, final, option
-from ._qp_subproblem import l1_model, solve_elastic_qp
+from ._qp_subproblem import l1_model, linearized_violations, solve_elastic_qp
 from ._result import SolverOutput, Status
 from ._spherical import two_point_curvature
 
@@ -41,8 +41,13 @@ COND_MAX = 1e4  # largest ratio of the diagonal curvatures
 
 
 def _finite(ev: dict[str, Any]) -> bool:
-    return bool(np.isfinite(ev["f"])
-                and all(np.isfinite(ev[k]).all() for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac")))
+    if not math.isfinite(ev["f"]):
+        return False
+    for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac"):  # a loop, not a generator: this runs at every point
+        a = ev[k]
+        if a.size and not np.isfinite(a).all():
+            return False
+    return True
 
 
 def _violation(ev: dict[str, Any]) -> float:
@@ -166,14 +171,14 @@ class DynamicQPlus(AbstractSolver):
         Bs = B @ dx
         sBs = float(dx @ Bs)
         sy = float(dx @ y)
-        if not (sBs > 0.0 and np.all(np.isfinite(y))):
+        if not (sBs > 0.0 and np.isfinite(y).all()):
             return B
         theta = 1.0 if sy >= 0.2 * sBs else 0.8 * sBs / (sBs - sy)
         r = theta * y + (1.0 - theta) * Bs
         sr = float(dx @ r)
         if sr <= 1e-12 * sBs:
             return B
-        Bn = B - np.outer(Bs, Bs) / sBs + np.outer(r, r) / sr
+        Bn = B - Bs[:, None] * Bs / sBs + r[:, None] * r / sr  # np.outer's own arithmetic, without its wrapper
         Bn = 0.5 * (Bn + Bn.T)
         # safeguard: eigenvalues within [sigma_min, sigma_max] (B stays positive definite)
         if self._inside_bounds(Bn):
@@ -189,7 +194,7 @@ class DynamicQPlus(AbstractSolver):
         (the sum of the then positive eigenvalues) is at most sigma_max.  The margin, 1e-10
         of the trace, exceeds eigh's rounding, so whenever this says True, eigh would not clip
         either; otherwise eigh decides (the result is the same, only cheaper)."""
-        tr = float(np.trace(B))
+        tr = float(B.trace())
         if not (tr <= self.sigma_max):
             return False
         shifted = B.copy()
@@ -201,16 +206,20 @@ class DynamicQPlus(AbstractSolver):
         """[OWN] Steering rule for the penalty weight (Byrd, Nocedal & Waltz 2008, eps1 = 0.1).
 
         While the elastic slacks are in use, the step for the current mu may trade feasibility
-        for f (rpr3 SO/D P1: mu = 10 throughout, the violation rising from 0.03 to 0.06 until
+        for f (rpr3 SO P1: mu = 10 throughout, the violation rising from 0.03 to 0.06 until
         the move limit collapsed).  The ideal reduction of the linearized l1 infeasibility
         within the move limit is that of the feasibility step (the QP without f, slacks
-        weighted 1e6); mu is raised tenfold until the step achieves a tenth of it.
+        weighted 1e6); mu is raised tenfold until the step achieves a tenth of it.  The ideal
+        reduction is at most the current infeasibility, so a step that already removes a tenth
+        of that passes without the feasibility QP (the same step and mu, one QP fewer).
         """
         def lin_infeas(d: np.ndarray) -> float:
-            return float(np.maximum(ev["ineq"] + ev["ineq_jac"] @ d, 0.0).sum()
-                         + np.abs(ev["eq"] + ev["eq_jac"] @ d).sum())
+            ineq, eq = linearized_violations(d, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"])
+            return ineq + eq
 
         l0 = ev["l1"]
+        if l0 - lin_infeas(res.d) >= 0.1 * l0:
+            return res, mu
         feas = solve_elastic_qp(np.zeros_like(ev["g"]), sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
                                 d_lo, d_up, 1e6)
         if not feas.ok:
