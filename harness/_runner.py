@@ -27,7 +27,7 @@ from ._progress import Progress
 from ._store import Store, retry_keys
 from ._suites import SuiteRef, import_modules, ref_for
 
-__all__ = ["run_suite", "RunSummary", "resolve_suite"]
+__all__ = ["run_suite", "RunSummary", "resolve_suite", "default_timeout"]
 
 CONSOLIDATE_EVERY = 60.0  # seconds between merges of pending run files into runs.parquet
 HEARTBEAT = 5.0  # seconds: progress is redrawn even while no run finishes
@@ -106,6 +106,17 @@ def resolve_suite(suite: str | None = None, suite_file: str | os.PathLike[str] |
     return ref
 
 
+#: per-run wall-clock limit (s) when none is given: 10 s for the library campaigns (their protocol,
+#: docs/cutest.md; the campaign tables judge every run under one limit), 600 s elsewhere
+DEFAULT_TIMEOUT = 600.0
+SUITE_TIMEOUTS = {"cutest": 10.0, "hs-all": 10.0}
+
+
+def default_timeout(suite: str | None, suite_file: str | os.PathLike[str] | None = None) -> float:
+    """The wall-clock limit a run of the suite gets when ``--timeout`` is not given."""
+    return DEFAULT_TIMEOUT if suite_file is not None else SUITE_TIMEOUTS.get(str(suite), DEFAULT_TIMEOUT)
+
+
 def _execute(specs: list[RunSpec], executor: str, jobs: int, scheduler: str | None,
              start_method: str | None, info: dict[str, Any]) -> Iterator[dict[str, Any] | None]:
     if executor == "local":
@@ -175,9 +186,11 @@ def _todo(specs: list[RunSpec], store: Store, timeout: float, fresh: bool,
 
 def plan_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] | None = None,
                solvers: Sequence[str] | None = None, problems: Sequence[str] | None = None,
-               select: str | None = None, out: str | os.PathLike[str] = "results", timeout: float = 600.0,
+               select: str | None = None, out: str | os.PathLike[str] = "results", timeout: float | None = None,
                fresh: bool = False, retry_failed: bool = False, modules: Sequence[str] = ()) -> pd.DataFrame:
     """What `run_suite` with the same arguments would do, per solver (`plan_table`); runs nothing."""
+    if timeout is None:
+        timeout = default_timeout(suite, suite_file)
     if modules:
         import_modules(tuple(modules))
     ref, specs = _plan(suite, suite_file, solvers, problems, select, timeout, modules)
@@ -213,7 +226,7 @@ def run_suite(
     select: str | None = None,
     out: str | os.PathLike[str] = "results",
     jobs: int | None = None,
-    timeout: float = 600.0,
+    timeout: float | None = None,
     fresh: bool = False,
     retry_failed: bool = False,
     executor: str = "local",
@@ -237,7 +250,8 @@ def run_suite(
         support it (``cutest``, ``hs-all``: ``"type=u,n<=100"``; docs/cutest.md).
     out : results directory; rows go to ``out/<suite>/runs.parquet``.
     jobs : worker processes (local executor); default all cores.
-    timeout : per-run wall-clock limit in seconds (0 or inf: none; negative or NaN is an error).
+    timeout : per-run wall-clock limit in seconds (0 or inf: none; negative or NaN is an error);
+        default `default_timeout`: 10 s for the campaigns ``cutest`` and ``hs-all``, else 600 s.
     fresh : run again even the runs already stored under the same key.
     retry_failed : run again every stored error and time-out row. Without it, stored failures
         of the infrastructure (worker killed, Dask worker lost, out of memory) are run again,
@@ -253,6 +267,8 @@ def run_suite(
     started = _manifest.now()
     if modules:
         import_modules(tuple(modules))
+    if timeout is None:
+        timeout = default_timeout(suite, suite_file)
     if not (timeout >= 0):  # also catches NaN
         raise HarnessArgumentError(f"--timeout must be a number of seconds >= 0 (0 or inf: no limit), got {timeout}")
     if history_points is not None and history_points < 2:

@@ -19,7 +19,8 @@ from .._profiles import solver_labels
 from .._store import failure_kind
 from ._base import Table, count
 
-__all__ = ["reference_values", "classify_runs", "campaign_tables", "SOLVED_ER", "FEAS_TOL"]
+__all__ = ["reference_values", "classify_runs", "campaign_tables", "common_limit", "judged_under", "SOLVED_ER",
+           "FEAS_TOL"]
 
 SOLVED_ER = 1e-5
 FEAS_TOL = 1e-6
@@ -40,6 +41,33 @@ def reference_values(runs: pd.DataFrame) -> pd.DataFrame:
     return pd.DataFrame(out, columns=["case_id", "ref", "ref_source"])
 
 
+def common_limit(runs: pd.DataFrame) -> float:
+    """The smallest per-run wall-clock limit among the stored runs, s (inf: none had one).
+
+    Every run of a campaign is judged under this one limit: a run stored under a larger
+    limit (``--timeout 600`` beside a campaign run with ``--timeout 10``) that took longer
+    would have been a time-out there, and solved counts compare like with like only if
+    no solver got more time than another."""
+    t = pd.to_numeric(runs["timeout_s"], errors="coerce") if "timeout_s" in runs else pd.Series(dtype=float)
+    t = t[(t > 0) & np.isfinite(t)]
+    return float(t.min()) if len(t) else math.inf
+
+
+def judged_under(runs: pd.DataFrame, limit: float) -> pd.DataFrame:
+    """The runs with every run longer than ``limit`` seconds turned into a time-out (no f,
+    no violation: it neither counts as solved nor sets a reference value)."""
+    wall = pd.to_numeric(runs["wall_time_s"], errors="coerce")
+    over = (wall > limit) & ~runs["status"].isin(["timeout", "not_applicable"])
+    if not over.any():
+        return runs
+    out = runs.copy()
+    out.loc[over, "message"] = [f"took {w:.1f} s, over the common wall-clock limit of {limit:g} s"
+                                for w in wall[over]]
+    out.loc[over, "status"] = "timeout"
+    out.loc[over, ["f", "max_violation"]] = math.nan
+    return out
+
+
 def _outcome(r: pd.Series) -> str:
     """solved, or why not: infeasible, cap, failed (converged elsewhere), error, timeout, infrastructure."""
     if r["status"] == "not_applicable":
@@ -56,7 +84,9 @@ def _outcome(r: pd.Series) -> str:
 
 
 def classify_runs(runs: pd.DataFrame) -> pd.DataFrame:
-    """The runs with ``label``, ``ref``, ``ref_source``, ``er`` and ``outcome`` columns."""
+    """The runs with ``label``, ``ref``, ``ref_source``, ``er`` and ``outcome`` columns, every
+    run judged under the campaign's common wall-clock limit (`common_limit`)."""
+    runs = judged_under(runs, common_limit(runs))
     df = runs.assign(label=solver_labels(runs)).merge(reference_values(runs), on="case_id", how="left")
     df["er"] = (df["f"] - df["ref"]).abs() / (1 + df["ref"].abs())
     df["outcome"] = [_outcome(r) for _, r in df.iterrows()]
@@ -101,6 +131,12 @@ def _summary(df: pd.DataFrame, order: list[str]) -> Table:
         "Outcomes: other point = feasible, converged elsewhere (a local minimum or a stop short of the reference); "
         "cap = iteration or evaluation cap; error = the solver or problem raised; infrastructure = the worker died.",
     ]
+    limit = common_limit(df)
+    if math.isfinite(limit):
+        late = int(df["message"].astype(str).str.contains("over the common wall-clock limit").sum())
+        notes.append(f"Time limit: every run is judged under {limit:g} s of wall-clock time, the smallest limit any "
+                     f"stored run had" + (f"; {late} runs that took longer under a larger limit count as time-outs."
+                                          if late else "."))
     return Table(name="campaign_summary", title="Per-solver summary of the campaign", frame=frame, notes=notes)
 
 

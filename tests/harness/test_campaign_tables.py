@@ -92,6 +92,32 @@ def test_summary_counts_failures_by_kind():
     assert summary.loc["s1", "solved vs known optimum"] == 1
 
 
+def test_every_run_is_judged_under_the_smallest_stored_limit():
+    """A run stored under a larger wall-clock limit that took longer than another run's limit is a
+    time-out in the tables: it neither counts as solved nor sets the best-found reference."""
+    runs = _runs()
+    runs["timeout_s"] = 600.0
+    runs.loc[runs["solver"] == "s1", "timeout_s"] = 10.0  # s1 ran under the campaign's 10 s
+    slow = (runs["case_id"] == "C/n=2/x0") & (runs["solver"] == "s2")
+    runs.loc[slow, "wall_time_s"] = 58.0  # s2 solved C, but in 58 s
+    df = classify_runs(runs).set_index(["case_id", "solver"])
+    assert df.loc[("C/n=2/x0", "s2"), "outcome"] == "timeout"
+    assert np.isnan(df.loc[("C/n=2/x0", "s2"), "ref"])  # no feasible end left to be the reference
+    assert df.loc[("A/n=2/x0", "s1"), "outcome"] == "solved"  # runs within the limit are unchanged
+    notes = " ".join(campaign_tables(runs, ["s1", "s2"])[0].notes)
+    assert "judged under 10 s" in notes and "1 runs that took longer" in notes
+    runs.loc[slow, "wall_time_s"] = 9.0  # within every limit: solved again
+    assert classify_runs(runs).set_index(["case_id", "solver"]).loc[("C/n=2/x0", "s2"), "outcome"] == "solved"
+
+
+def test_campaigns_default_to_their_10_s_limit():
+    from harness._runner import DEFAULT_TIMEOUT, default_timeout
+
+    assert default_timeout("cutest") == default_timeout("hs-all") == 10.0
+    assert default_timeout("hs") == DEFAULT_TIMEOUT == 600.0
+    assert default_timeout(None, "my_suite.py") == DEFAULT_TIMEOUT  # a user's file: no campaign protocol
+
+
 def test_log_ratio_profile(tmp_path):
     runs = _runs().replace({"s1": "dynamic-q", "s2": "ipopt"})
     paths = plot("cutest", "log-ratio", out=tmp_path, runs=runs)
