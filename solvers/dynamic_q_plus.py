@@ -9,8 +9,7 @@ Changed (see docs/thesis_solvers.md, "Dynamic-Q+"):
    curvature instead); the constraints are linearized, so the subproblem is a convex QP;
 2. the subproblem is solved exactly (`solvers._qp_subproblem`, Clarabel) instead of by LFOPC's
    penalty compromise, with elastic l1 slacks so it is always feasible, and the penalty weight
-   steered (Byrd, Nocedal & Waltz) so that each step keeps reducing the linearized infeasibility,
-   and lowered again when it has grown far past what the multipliers need;
+   steered (Byrd, Nocedal & Waltz) so that each step keeps reducing the linearized infeasibility;
 3. the move limit is a box trust region adapted by the ratio of actual to predicted reduction
    of the l1 exact-penalty merit f + mu (sum max(g,0) + sum |h|), with Fletcher's
    second-order correction of rejected steps along curved constraints;
@@ -106,9 +105,11 @@ class DynamicQPlus(AbstractSolver):
     steering: bool = option(True, "raise the penalty weight until the step achieves at least a tenth of the "
                             "linearized infeasibility reduction the move limit allows (one more QP, only while "
                             "the elastic slacks are in use)", "[OWN] Byrd-Nocedal-Waltz steering rule")
-    penalty_decrease: bool = option(True, "lower the penalty weight to 10x what the multipliers need when it has "
-                                    "grown past 100x that and the step uses no slacks (the step is the same for "
-                                    "any weight above the multipliers; only the merit changes)", "[OWN]")
+    penalty_decrease: bool = option(False, "at a feasible point, lower the penalty weight to 10x what the "
+                                    "multipliers need when it has grown past 100x that and the step uses no slacks "
+                                    "(the step is the same for any weight above the multipliers; only the merit "
+                                    "changes). Off: it solves 4 more CUTEst problems but loses W_p's enclosure on "
+                                    "3-RPR D P1 (docs/thesis_solvers.md)", "[OWN]")
     max_iter: int = option(200, "maximum number of oracle points (iterations incl. rejected trials)", "[OWN]")
 
     def check_together(self) -> None:  # called by AbstractSolver.__post_init__ after the per-option checks
@@ -300,12 +301,12 @@ class DynamicQPlus(AbstractSolver):
                 mu = 2.0 * mult
                 res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
                                        np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
-            elif (self.penalty_decrease and res.elastic <= self.eps_c
+            elif (self.penalty_decrease and res.elastic <= self.eps_c and ev["viol"] <= self.eps_c
                   and mu > 100.0 * max(float(self.mu0), 2.0 * mult)):
-                # [OWN] lower an overgrown weight.  Steering can raise mu by 1e4 far from the solution;
-                # kept there, the merit rejects every plain step whose violation is 1e-8 (DEMBO7: on the
-                # cap at f = 228, optimum 175).  With no slacks in use and mu above the multipliers the
-                # QP step does not depend on mu, so only the merit changes
+                # [OWN] option: lower an overgrown weight.  Steering can raise mu by 1e4 far from the
+                # solution; kept there, the merit rejects every plain step whose violation is 1e-8
+                # (DEMBO7: on the cap at f = 228, optimum 175).  With no slacks in use and mu above the
+                # multipliers the QP step does not depend on mu, so only the merit changes
                 mu = 10.0 * max(float(self.mu0), 2.0 * mult)
             if self.steering and res.elastic > self.eps_c and mu < MU_MAX:
                 res, mu = self._steer(res, mu, ev, sigma, np.maximum(lo - x, -rho), np.minimum(up - x, rho))

