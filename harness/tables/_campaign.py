@@ -135,7 +135,7 @@ def _summary(df: pd.DataFrame, order: list[str]) -> Table:
     if math.isfinite(limit):
         late = int(df["message"].astype(str).str.contains("over the common wall-clock limit").sum())
         notes.append(f"Time limit: every run is judged under {limit:g} s of wall-clock time, the smallest limit any "
-                     f"stored run had" + (f"; {late} runs that took longer under a larger limit count as time-outs."
+                     f"stored run had" + (f"; {late} finished runs that took longer count as time-outs."
                                           if late else "."))
     return Table(name="campaign_summary", title="Per-solver summary of the campaign", frame=frame, notes=notes)
 

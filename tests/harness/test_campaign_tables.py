@@ -105,7 +105,7 @@ def test_every_run_is_judged_under_the_smallest_stored_limit():
     assert np.isnan(df.loc[("C/n=2/x0", "s2"), "ref"])  # no feasible end left to be the reference
     assert df.loc[("A/n=2/x0", "s1"), "outcome"] == "solved"  # runs within the limit are unchanged
     notes = " ".join(campaign_tables(runs, ["s1", "s2"])[0].notes)
-    assert "judged under 10 s" in notes and "1 runs that took longer" in notes
+    assert "judged under 10 s" in notes and "1 finished runs that took longer" in notes
     runs.loc[slow, "wall_time_s"] = 9.0  # within every limit: solved again
     assert classify_runs(runs).set_index(["case_id", "solver"]).loc[("C/n=2/x0", "s2"), "outcome"] == "solved"
 
