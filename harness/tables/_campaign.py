@@ -55,12 +55,13 @@ def common_limit(runs: pd.DataFrame) -> float:
 
 def judged_under(runs: pd.DataFrame, limit: float) -> pd.DataFrame:
     """The runs with every run longer than ``limit`` seconds turned into a time-out (no f,
-    no violation: it neither counts as solved nor sets a reference value)."""
+    no violation: it neither counts as solved nor sets a reference value), marked in the
+    boolean column ``over_limit``."""
     wall = pd.to_numeric(runs["wall_time_s"], errors="coerce")
     over = (wall > limit) & ~runs["status"].isin(["timeout", "not_applicable"])
+    out = runs.assign(over_limit=over)
     if not over.any():
-        return runs
-    out = runs.copy()
+        return out
     out.loc[over, "message"] = [f"took {w:.1f} s, over the common wall-clock limit of {limit:g} s"
                                 for w in wall[over]]
     out.loc[over, "status"] = "timeout"
@@ -133,7 +134,7 @@ def _summary(df: pd.DataFrame, order: list[str]) -> Table:
     ]
     limit = common_limit(df)
     if math.isfinite(limit):
-        late = int(df["message"].astype(str).str.contains("over the common wall-clock limit").sum())
+        late = int(df["over_limit"].sum())
         notes.append(f"Time limit: every run is judged under {limit:g} s of wall-clock time, the smallest limit any "
                      f"stored run had" + (f"; {late} finished runs that took longer count as time-outs."
                                           if late else "."))
