@@ -28,6 +28,7 @@ __all__ = ["REFERENCE_MODULES", "has_reference", "reference_path", "load_referen
 #: suite -> module defining ``reference(runs, stored) -> dict``
 REFERENCE_MODULES: dict[str, str] = {
     "rpr2": "manipulators.synthesis.rpr2_exact",
+    "rpr2-exact": "manipulators.synthesis.rpr2_exact_suite",
     "rpr3": "manipulators.synthesis.rpr3_exact",
 }
 

@@ -326,6 +326,9 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame, reference: dict) -> Table
             "and reports a locally infeasible problem.",
             "How far Dynamic-Q's ends move when a start moves by 1e-6 (O and E): Table 4.7s, suite "
             "rpr2-spread (python -m harness run --suite rpr2-spread).",
+            "The same synthesis in exact smooth form (leg limits on W_p's boundary instead of h = dW_p = 0 on "
+            "chord workspaces; analytic derivatives), every solver at its defaults from SP1-SP4: Table 4.7x, "
+            "suite rpr2-exact (python -m harness run --suite rpr2-exact).",
         ],
     )
 
