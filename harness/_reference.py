@@ -30,6 +30,7 @@ REFERENCE_MODULES: dict[str, str] = {
     "rpr2": "manipulators.synthesis.rpr2_exact",
     "rpr2-exact": "manipulators.synthesis.rpr2_exact_suite",
     "rpr3": "manipulators.synthesis.rpr3_exact",
+    "rpr3-exact": "manipulators.synthesis.rpr3_exact",
 }
 
 FILENAME = "reference.json"

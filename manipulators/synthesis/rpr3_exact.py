@@ -16,7 +16,7 @@ import numpy as np
 from .rpr2_exact import _jsonable
 from .rpr3_suite import PRESCRIBED3, SETTINGS, _thesis_row, design, exact_enclosure
 
-__all__ = ["GLOBAL_BOX", "exact_optimum", "reference", "N_STARTS", "CASES"]
+__all__ = ["GLOBAL_BOX", "exact_constraints", "exact_optimum", "reference", "N_STARTS", "CASES"]
 
 #: starts of the local stage used for the tables
 N_STARTS = 40
@@ -33,6 +33,34 @@ def _slices(kind: str):
     phis = np.linspace(min(s["phis"]), max(s["phis"]), 11) if s["dextrous"] else np.asarray(s["phis"])
     kphis = np.array([min(s["phis"]), max(s["phis"])]) if s["dextrous"] else phis
     return phis, kphis
+
+
+def exact_constraints(kind: str, prescribed: str = "P1", k: int = 96):
+    """``cons(z) >= 0`` of the exact SO/MO/D model, z = [x_C, y_C, x_D, x_E, r, t] (eq. 5.36 and t).
+
+    Rows: minus every leg-length excess beyond its limits at ``k`` points of W_p's boundary
+    on every slice of `_slices` (7 per point and slice: `RPR3.constraints`), then
+    kappa^-1 - t at the same points on the kappa slices (5.39).  An invalid design (`design`
+    is None) gives -1 in every row.  Together they say exactly: W_p inside every required
+    constant-orientation workspace and min kappa^-1 >= t (see `exact_optimum`).
+    """
+    if kind.lower() not in SETTINGS:
+        raise ValueError(f"unknown synthesis {kind!r}; valid: {', '.join(SETTINGS)}")
+    if prescribed not in PRESCRIBED3:
+        raise ValueError(f"unknown prescribed workspace {prescribed!r}; valid: {', '.join(PRESCRIBED3)}")
+    phis, kphis = _slices(kind.lower())
+    B = PRESCRIBED3[prescribed].points(k)
+    n_c = k * 7 * len(phis) + k * len(kphis)
+
+    def cons(z):
+        m = design(z[:5])
+        if m is None:
+            return -np.ones(n_c)
+        legs = np.concatenate([m.constraints(B, p).ravel() for p in phis])
+        kv = np.concatenate([m.inverse_condition(B, p) for p in kphis])
+        return np.concatenate([-legs, kv - z[5]])
+
+    return cons
 
 
 def exact_optimum(kind: str, prescribed: str = "P1", n_starts: int = 12, k: int = 96, seed: int = 0,
@@ -68,16 +96,7 @@ def exact_optimum(kind: str, prescribed: str = "P1", n_starts: int = 12, k: int 
     s = SETTINGS[kind.lower()]
     P = PRESCRIBED3[prescribed]
     phis, kphis = _slices(kind.lower())
-    B = P.points(k)
-    n_c = k * 7 * len(phis) + k * len(kphis)
-
-    def cons(z):
-        m = design(z[:5])
-        if m is None:
-            return -np.ones(n_c)
-        legs = np.concatenate([m.constraints(B, p).ravel() for p in phis])
-        kv = np.concatenate([m.inverse_condition(B, p) for p in kphis])
-        return np.concatenate([-legs, kv - z[5]])
+    cons = exact_constraints(kind, prescribed, k)
 
     def polish(x0, t0=0.5):
         res = minimize(lambda z: -z[5], np.append(x0, t0), jac=lambda z: np.r_[np.zeros(5), -1.0], method="SLSQP",
