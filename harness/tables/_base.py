@@ -11,7 +11,7 @@ import dataclasses
 
 import pandas as pd
 
-__all__ = ["Table", "count", "count_cell"]
+__all__ = ["Table", "count", "count_cell", "column_flags"]
 
 
 @dataclasses.dataclass
@@ -52,3 +52,14 @@ def count_cell(value: object) -> int | str:
     """A count for a table cell: the int, or "" when the run has none (its status says why)."""
     c = count(value)
     return "" if c is None else c
+
+
+def column_flags(frame: pd.DataFrame, **columns: list[bool]) -> pd.DataFrame | None:
+    """A `Table.flags` frame for ``frame``: False everywhere but the named columns, which
+    take the given per-row flags (e.g. ``column_flags(frame, reached=[...])``); None if empty."""
+    if not len(frame):
+        return None
+    flags = pd.DataFrame(False, index=frame.index, columns=frame.columns)
+    for name, values in columns.items():
+        flags[name] = list(values)
+    return flags

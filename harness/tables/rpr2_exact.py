@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ._base import Table, count_cell
+from ._base import Table, column_flags, count_cell
 from .rpr2 import _decoded, _evaluate, _fmt_d, _num, _status
 
 __all__ = ["tables", "AT_MINIMUM_REL", "FEAS_TOL"]
@@ -66,10 +66,7 @@ def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
                          "d*": _fmt_d(x) if x.size else "", "time_s": _num(r.get("wall_time_s"), ".3g")})
             flags.append(not ok and r["status"] != "not_applicable")
     frame = pd.DataFrame(rows)
-    flag_frame = None
-    if len(frame):
-        flag_frame = pd.DataFrame(False, index=frame.index, columns=frame.columns)
-        flag_frame["local minimum"] = flags
+    flag_frame = column_flags(frame, **{"local minimum": flags})
     return [Table(
         name="table_4_7x",
         title="Table 4.7x: E synthesis (4.14) in exact smooth form from SP1-SP4, every constrained solver at its "

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ._base import Table, count_cell
+from ._base import Table, column_flags, count_cell
 from .rpr2 import _decoded, _fmt_d, _num, _status
 
 __all__ = ["tables", "AT_OPTIMUM_REL", "FEAS_TOL"]
@@ -70,10 +70,7 @@ def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
                          "time_s": _num(r.get("wall_time_s"), ".3g")})
             flags.append(not ok and r["status"] != "not_applicable")
     frame = pd.DataFrame(rows)
-    flag_frame = None
-    if len(frame):
-        flag_frame = pd.DataFrame(False, index=frame.index, columns=frame.columns)
-        flag_frame["reached"] = flags
+    flag_frame = column_flags(frame, reached=flags)
     return [Table(
         name="table_5_3x",
         title="Table 5.3x: 3-RPR SO, MO and D synthesis in exact form (no chord method), from suite rpr3's starts, "
