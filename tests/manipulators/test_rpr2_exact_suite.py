@@ -3,9 +3,12 @@
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.optimize import minimize
 
 from harness.tables import build_tables
+from manipulators.prescribed import PRESCRIBED
 from manipulators.synthesis import rpr2_exact_suite as S
 from manipulators.synthesis.rpr2_exact import EXACT_K
 from manipulators.synthesis.rpr2_suite import STARTS, evaluate
@@ -78,3 +81,28 @@ def test_table_names_the_minimum_reached_and_flags_other_ends():
     assert ours.loc["scipy-cobyla", "local minimum"] == "none"
     flagged = t.flags[t.frame["start"] == "SP1"]["local minimum"].tolist()
     assert flagged == [False, True, True]
+
+
+_P = S.e_exact_problem("SP1")
+_DENSE = PRESCRIBED["P1"].points(4096)
+
+
+@settings(max_examples=40, deadline=None, derandomize=True)
+@given(st.floats(-5.5, -4.0), st.floats(-3.0, -1.5), st.floats(4.0, 5.5), st.floats(-0.2, 1.2), st.floats(-0.2, 1.2))
+def test_inequalities_hold_iff_the_exact_workspace_encloses_w_p(xa, ya, xb, u1, u2):
+    """The invariant the formulation rests on: g(d) <= 0 (sampled leg limits, base line) exactly when
+    W_p lies inside the exact workspace (shapely).  l_min is drawn across the interval [max l / 1.5,
+    min l] of leg lengths over W_p's boundary, so designs inside and outside both occur; a margin
+    absorbs the 512-point sampling."""
+    r = []
+    for xp, u in ((xa, u1), (xb, u2)):
+        ll = np.hypot(_DENSE[:, 0] - xp, _DENSE[:, 1] - ya)
+        lo, hi = ll.max() / 1.5, ll.min()
+        r.append(lo + u * (hi - lo))
+    d = np.array([xa, ya, xb, *r])
+    g = float(_P.ineq(d).max())
+    dwp = evaluate("e", d, exact=True)["dwp_exact"]
+    if g < -1e-3:
+        assert dwp <= 1e-9
+    elif g > 1e-3:
+        assert dwp > 0.0
