@@ -19,13 +19,16 @@ import numpy as np
 
 from problems import Case, Problem, Suite
 
-from .rpr3_exact import CASES, _slices, exact_constraints
+from .rpr3_exact import CASES, GLOBAL_BOX, _slices, exact_constraints
 from .rpr3_suite import PRESCRIBED3, SETTINGS, SOLVERS, design
 
-__all__ = ["SUITE", "K", "FD_STEP", "exact_problem"]
+__all__ = ["SUITE", "K", "FD_STEP", "R_MIN", "exact_problem"]
 
 K = 96  # points of W_p's boundary per slice (as `rpr3_exact.exact_optimum`'s local stage)
 FD_STEP = 1e-7  # central differences of the constraints: leg lengths and kappa^-1 are smooth in z
+#: lower bound on the platform size r (a platform of size <= 0 is no manipulator; the lower end of
+#: `rpr3_exact.GLOBAL_BOX`).  Without it Ipopt steps to r < 0 on MO/D P1-P2 and reports infeasibility.
+R_MIN = GLOBAL_BOX[4][0]
 
 
 def exact_problem(kind: str, prescribed: str = "P1", k: int = K) -> Problem:
@@ -33,7 +36,7 @@ def exact_problem(kind: str, prescribed: str = "P1", k: int = K) -> Problem:
 
     Minimize -t subject to g(z) = -`exact_constraints` (z) <= 0: every leg-length excess over
     ``k`` points of W_p's boundary on every slice (D: 11 over the range), and t - kappa^-1 at
-    the same points on the kappa slices (5.39).  Starts at suite ``rpr3``'s design with t =
+    the same points on the kappa slices (5.39); bound r >= `R_MIN`.  Starts at suite ``rpr3``'s design with t =
     min kappa^-1 there (so only the leg limits can be violated at the start).  The objective's
     gradient is exact; the constraints' Jacobian is by central differences (step `FD_STEP`).
     """
@@ -56,6 +59,7 @@ def exact_problem(kind: str, prescribed: str = "P1", k: int = K) -> Problem:
         name=f"rpr3-{kl}-exact-{prescribed.lower()}", x0=np.append(d0, t0),
         objective=lambda z: -float(z[5]), gradient=lambda z: grad.copy(),
         ineq=lambda z: -cons(np.asarray(z, dtype=float)), n_ineq=int(cons(np.append(d0, t0)).size),
+        lower=np.array([-np.inf] * 4 + [R_MIN, -np.inf]), upper=np.full(6, np.inf),
         fd="central", fd_step=FD_STEP,
         source=f"Hay 2003, Sec. 5.{ {'so': 6, 'mo': 7, 'd': 8}[kl] }, eqs. (5.34)-(5.40) in exact form "
                "(ours: leg limits on dW_p, no chord method)",

@@ -20,6 +20,7 @@ def test_suite_is_registered_with_every_case_at_the_rpr3_starts():
         z0 = np.asarray(c.problem.x0)
         np.testing.assert_array_equal(z0[:5], SETTINGS[c.meta["kind"]]["start"])
         assert not c.options  # every solver at its defaults
+        assert c.problem.lower[4] == S.R_MIN > 0 and np.isneginf(c.problem.lower[[0, 1, 2, 3, 5]]).all()
 
 
 @pytest.mark.parametrize("kind", ["so", "mo", "d"])
