@@ -34,6 +34,7 @@ _LOCAL = threading.local()
 
 NUMERIC_ENV = ("OPENBLAS_CORETYPE", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 _ENV_LOCK = threading.Lock()
+_DAEMON_LOCK = threading.Lock()  # guards the toggle of the process's daemon flag in `_new_slot`
 
 
 def numeric_env() -> dict[str, str | None]:
@@ -56,14 +57,18 @@ def _new_slot(env: dict[str, str | None]) -> Slot:
     apply_numeric_env(env)
     ctx = mp.get_context("spawn")  # a fresh interpreter: OpenBLAS loads under ``env``
     proc = mp.current_process()
-    daemon = proc._config.get("daemon")  # type: ignore[attr-defined]  # private, no stub
     # Dask's worker processes are daemonic and multiprocessing refuses children of daemons;
-    # our child ends by itself when its pipe closes, so the rule's purpose is kept.
-    proc._config["daemon"] = False  # type: ignore[attr-defined]  # private, no stub
-    try:
-        return Slot(ctx, die_with_parent=False)  # the child ends when its pipe closes
-    finally:
-        proc._config["daemon"] = daemon  # type: ignore[attr-defined]  # private, no stub
+    # our child ends by itself when its pipe closes, so the rule's purpose is kept.  The flag
+    # is process-wide and a worker runs several threads: without the lock one thread could
+    # restore it while another starts its child ("daemonic processes are not allowed to have
+    # children", seen with threads_per_worker=2 under load).
+    with _DAEMON_LOCK:
+        daemon = proc._config.get("daemon")  # type: ignore[attr-defined]  # private, no stub
+        proc._config["daemon"] = False  # type: ignore[attr-defined]  # private, no stub
+        try:
+            return Slot(ctx, die_with_parent=False)  # the child ends when its pipe closes
+        finally:
+            proc._config["daemon"] = daemon  # type: ignore[attr-defined]  # private, no stub
 
 
 def run_isolated(spec: RunSpec, env: dict[str, str | None] | None = None) -> dict[str, Any]:

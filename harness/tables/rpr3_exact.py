@@ -80,8 +80,8 @@ def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
                "r, t] subject to every leg length within its limits at 96 points of W_p's boundary on every slice "
                "(SO: phi = 0; MO: -5, 0, +5 degrees; D: 11 slices over [-5, +5]) and t <= kappa^-1 at those points "
                "on the kappa slices (5.39) - exactly W_p inside the required workspaces, no chord method, no "
-               "triangle scheme; bound r >= 0.05 (a platform of size <= 0 is no design). Start: suite rpr3's design with t = min kappa^-1 there. Constraint Jacobian by "
-               "central differences (step 1e-7).",
+               "triangle scheme; bound r >= 0.05 (a platform of size <= 0 is no design). Start: suite rpr3's "
+               "design with t = min kappa^-1 there. Constraint Jacobian by central differences (step 1e-7).",
                "violation: the largest constraint violation at the end, measured by the harness's oracle. "
                "'reached': the end's t* within 1e-4 (1 + |t|) of the exact model's best design found "
                "(differential evolution and multistart SLSQP) or of its local optimum from the suite's start "

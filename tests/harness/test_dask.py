@@ -62,3 +62,33 @@ def test_dask_workers_without_the_blas_pin_give_local_counts(tmp_path, monkeypat
     manifest = json.loads((tmp_path / "dask" / "appendix-a" / "manifest.json").read_text())
     workers = manifest["latest"]["dask_workers"]
     assert workers and all(w["OPENBLAS_CORETYPE"] == pinned.get("OPENBLAS_CORETYPE") for w in workers.values())
+
+
+def test_new_slot_keeps_the_daemon_flag_off_for_every_thread(monkeypatch):
+    """Two threads of one daemonic Dask worker start their children at once: each child must see
+    the daemon flag off while it starts (the flag is process-wide; a race once restored it under
+    another thread's start), and the flag is back on afterwards."""
+    import multiprocessing as mp
+    import threading
+    import time
+
+    from harness import _dask
+
+    proc = mp.current_process()
+    seen: list[object] = []
+
+    class FakeSlot:  # stands in for the spawned child: Slot.__init__ is where multiprocessing checks
+        def __init__(self, ctx, die_with_parent):
+            time.sleep(0.05)  # widen the window in which another thread could flip the flag back
+            seen.append(proc._config.get("daemon"))
+
+    monkeypatch.setattr(_dask, "Slot", FakeSlot)
+    monkeypatch.setitem(proc._config, "daemon", True)
+    threads = [threading.Thread(target=_dask._new_slot, args=(_dask.numeric_env(),)) for _ in range(3)]
+    for t in threads:
+        t.start()
+        time.sleep(0.01)
+    for t in threads:
+        t.join()
+    assert seen == [False, False, False]
+    assert proc._config["daemon"] is True
