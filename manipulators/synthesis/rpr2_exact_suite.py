@@ -25,6 +25,7 @@ import numpy as np
 from problems import Case, Problem, Suite
 
 from ..prescribed import PRESCRIBED
+from ._design_cache import DesignCache
 from .rpr2_exact import EXACT_K, _jsonable, exact_e_problem, exact_optimum
 from .rpr2_suite import STARTS
 
@@ -51,11 +52,15 @@ def e_exact_problem(start: str = "SP1", prescribed: str = "P1", k: int = EXACT_K
     if not (isinstance(k, (int, np.integer)) and k >= 3):
         raise ValueError(f"k (boundary points) must be an integer >= 3, got {k!r}")
     f, cons = exact_e_problem(prescribed, int(k))
+    # the oracle asks for value and derivative at one point separately; each pair is one computation
+    f_memo: DesignCache[tuple[float, np.ndarray]] = DesignCache(4)
+    c_memo: DesignCache[tuple[np.ndarray, np.ndarray]] = DesignCache(4)
     inf = np.inf
     return Problem(
         name=f"rpr2-e-exact-{start}", x0=np.asarray(STARTS[start], dtype=float),
-        objective=lambda d: f(d)[0], gradient=lambda d: f(d)[1],
-        ineq=lambda d: -cons(d)[0], ineq_jacobian=lambda d: -cons(d)[1], n_ineq=4 * int(k) + 1,
+        objective=lambda d: f_memo.get(d, f)[0], gradient=lambda d: f_memo.get(d, f)[1],
+        ineq=lambda d: -c_memo.get(d, cons)[0], ineq_jacobian=lambda d: -c_memo.get(d, cons)[1],
+        n_ineq=4 * int(k) + 1,
         lower=np.array([-inf, -inf, -inf, L_MIN_LOWER, L_MIN_LOWER]), upper=np.full(5, inf),
         source="Hay 2003, Sec. 4.6, eq. (4.14) in exact form (ours: leg limits on dW_p, no chord method)",
         tags=("manipulator", "rpr2", "E", "exact"), meta={"prescribed": prescribed, "k": int(k), "kind": "e-exact"})

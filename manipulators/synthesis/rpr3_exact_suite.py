@@ -36,18 +36,14 @@ def exact_problem(kind: str, prescribed: str = "P1", k: int = K) -> Problem:
 
     Minimize -t subject to g(z) = -`exact_constraints` (z) <= 0: every leg-length excess over
     ``k`` points of W_p's boundary on every slice (D: 11 over the range), and t - kappa^-1 at
-    the same points on the kappa slices (5.39); bound r >= `R_MIN`.  Starts at suite ``rpr3``'s design with t =
-    min kappa^-1 there (so only the leg limits can be violated at the start).  The objective's
+    the same points on the kappa slices (5.39); bound r >= `R_MIN`.  Starts at suite ``rpr3``'s
+    design with t = min kappa^-1 there (so only the leg limits can be violated at the start).  The objective's
     gradient is exact; the constraints' Jacobian is by central differences (step `FD_STEP`).
     """
-    kl = kind.lower() if isinstance(kind, str) else kind
-    if kl not in SETTINGS:
-        raise ValueError(f"unknown synthesis {kind!r}; valid: {', '.join(SETTINGS)}")
-    if prescribed not in PRESCRIBED3:
-        raise ValueError(f"unknown prescribed workspace {prescribed!r}; valid: {', '.join(PRESCRIBED3)}")
+    kl = str(kind).lower()
     if not (isinstance(k, (int, np.integer)) and k >= 3):
         raise ValueError(f"k (boundary points per slice) must be an integer >= 3, got {k!r}")
-    cons = exact_constraints(kl, prescribed, int(k))
+    cons = exact_constraints(kl, prescribed, int(k))  # checks kind and prescribed, naming the valid ones
     d0 = np.asarray(SETTINGS[kl]["start"], dtype=float)
     B = PRESCRIBED3[prescribed].points(int(k))
     m0 = design(d0)
