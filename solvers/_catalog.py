@@ -13,6 +13,7 @@ BUILTIN: dict[str, str] = {
     "dynamic-q": "solvers.dynamic_q:DynamicQ",
     "dynamic-q-plus": "solvers.dynamic_q_plus:DynamicQPlus",
     "etopc": "solvers.etopc:ETOPC",
+    "multistart": "solvers.multistart:Multistart",
     # established solvers (adapters)
     "scipy-cg": "solvers.scipy_adapters:ScipyCG",
     "scipy-bfgs": "solvers.scipy_adapters:ScipyBFGS",

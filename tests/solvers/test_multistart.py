@@ -1,0 +1,139 @@
+"""Multistart (Snyman-Fatti Bayesian stopping) over a local solver."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from problems import Problem, ProblemError
+from solvers import NotApplicable, Status, make_solver, solve
+from solvers.multistart import Multistart, bayes_confidence, sampling_box
+
+
+def double_well(x0: float = 0.5, lower: float = -math.inf) -> Problem:
+    """f = (x^2 - 1)^2 + 0.3 x: local minimum near x = 0.96, global near x = -1.0356, maximum near 0.075."""
+    return Problem(name="double-well", x0=[x0], objective=lambda x: (x[0] ** 2 - 1) ** 2 + 0.3 * x[0],
+                   gradient=lambda x: np.array([4 * x[0] * (x[0] ** 2 - 1) + 0.3]), lower=[lower])
+
+
+def constrained_well() -> Problem:
+    """The double well in x1 with x2 tied to it by an equality and an inequality."""
+    return Problem(name="constrained-well", x0=[0.5, 0.0],
+                   objective=lambda x: (x[0] ** 2 - 1) ** 2 + 0.3 * x[0] + x[1] ** 2,
+                   gradient=lambda x: np.array([4 * x[0] * (x[0] ** 2 - 1) + 0.3, 2 * x[1]]),
+                   eq=lambda x: np.array([x[1] - 0.1 * x[0]]), ineq=lambda x: np.array([x[0] - 3.0]),
+                   fd="central")
+
+
+def test_bayes_confidence_values():
+    assert bayes_confidence(1, 1) == pytest.approx(2 / 3)
+    assert bayes_confidence(4, 4) == pytest.approx(1 - 5 * 4 * 3 * 2 * 24 / 362880)
+    assert bayes_confidence(4, 3) < 0.99 < bayes_confidence(4, 4)
+    assert bayes_confidence(7, 0) == 0.0
+    with pytest.raises(ValueError, match="0 <= r <= n"):
+        bayes_confidence(3, 4)
+
+
+@given(st.integers(1, 400), st.integers(1, 30))
+def test_bayes_confidence_grows_with_hits(n, r):
+    r = min(r, n)
+    q = bayes_confidence(n, r)
+    assert 0.0 < q <= 1.0
+    if r < n:
+        assert bayes_confidence(n, r + 1) >= q and (q > 1 - 1e-12 or bayes_confidence(n, r + 1) > q)
+
+
+@pytest.mark.parametrize("r", [1, 3, 6])
+def test_bayes_confidence_limit_of_many_starts(r):
+    # (n + 1)/(2n + 1) * prod (n - i)/(2n - i) -> 2^-(r+1): with many starts, r hits give at most this
+    assert bayes_confidence(100_000, r) == pytest.approx(1 - 2.0 ** -(r + 1), abs=1e-4)
+
+
+def test_sampling_box_is_scaled_by_x0_and_cut_by_bounds():
+    lo, hi = sampling_box(np.array([0.0, 10.0, 2.0]), np.array([-np.inf, 5.0, 2.0]), np.array([np.inf] * 3), 1.0)
+    assert lo.tolist() == [-1.0, 5.0, 2.0] and hi.tolist() == [1.0, 20.0, 4.0]
+
+
+def test_finds_the_global_minimum_the_local_solver_misses():
+    p = double_well()
+    local = solve(p, "dynamic-q-plus")
+    assert local.status is Status.CONVERGED and local.x[0] > 0.9  # the local minimum
+    r = solve(p, "multistart")
+    assert r.success and r.x[0] == pytest.approx(-1.0356, abs=1e-3)
+    assert r.f < local.f - 0.5
+    assert r.extra["stopped_by"] == "confidence" and r.extra["confidence"] >= 0.99
+    assert r.extra["distinct_minima"] == 2 and r.nit == r.extra["starts"] >= 4
+    assert r.nfg > local.nfg  # every local run is counted by the one oracle
+
+
+def test_constrained_problem_and_another_local_solver():
+    r = solve(constrained_well(), "multistart[local='scipy-slsqp']")
+    assert r.success and r.x[0] == pytest.approx(-1.04, abs=2e-2) and r.max_violation < 1e-8
+    assert r.options["local"]["solver"] == "scipy-slsqp"
+
+
+def test_deterministic():
+    a, b = solve(double_well(), "multistart"), solve(double_well(), "multistart")
+    assert a.x.tolist() == b.x.tolist() and a.nfg == b.nfg and a.extra == b.extra
+    c = solve(double_well(), "multistart", seed=5)
+    assert c.extra["starts"] != a.extra["starts"] or c.nfg != a.nfg
+
+
+def test_a_failing_start_is_recorded_and_the_search_goes_on():
+    def f(x):
+        if x[0] > 1.2:
+            raise ProblemError("undefined for x > 1.2")
+        return (x[0] ** 2 - 1) ** 2 + 0.3 * x[0]
+
+    p = Problem(name="partly-undefined", x0=[0.5], objective=f,
+                gradient=lambda x: np.array([4 * x[0] * (x[0] ** 2 - 1) + 0.3]))
+    r = solve(p, "multistart")
+    assert r.status is Status.CONVERGED and r.x[0] < 0
+    assert r.extra["converged_starts"] < r.extra["starts"]  # some starts raised
+
+
+def test_budget_ends_the_search_with_the_best_end():
+    r = solve(double_well(), "multistart", max_nfg=25)
+    assert r.status is Status.MAX_ITER and r.nfg <= 25 and np.isfinite(r.f)
+    assert r.extra["stopped_by"] == "budget"
+
+
+def test_max_starts_and_max_time_end_without_certifying():
+    r = solve(double_well(), "multistart", max_starts=2)
+    assert r.status is Status.MAX_ITER and r.extra["stopped_by"] == "max_starts" and r.nit == 2
+    t = solve(double_well(), "multistart", max_time=1e-9)
+    assert t.status is Status.MAX_ITER and t.extra["stopped_by"] == "max_time" and t.nit == 1
+
+
+def test_no_feasible_end_is_a_failure():
+    p = Problem(name="infeasible", x0=[0.0], objective=lambda x: x[0] ** 2, gradient=lambda x: 2 * x,
+                ineq=lambda x: np.array([1.0 + x[0] ** 2]), ineq_jacobian=lambda x: np.array([[2 * x[0]]]))
+    r = solve(p, "multistart", max_starts=3)
+    assert r.status is Status.FAILED and not r.success and "ended feasible" in r.message
+
+
+def test_feasible_ends_on_the_cap_give_the_lowest_uncertified():
+    r = solve(double_well(), "multistart", local="dynamic-q-plus[max_iter=2]", max_starts=4)
+    assert r.status is Status.MAX_ITER and "no local run of 4 converged" in r.message
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"confidence": 1.5}, "confidence"),
+    ({"max_starts": 0}, "max_starts"),
+    ({"max_time": -1.0}, "max_time"),
+    ({"local": "no-such-solver"}, "no-such-solver"),
+    ({"local": Multistart()}, "not another multistart"),
+])
+def test_bad_options_are_named(options, match):
+    with pytest.raises(ValueError, match=match):
+        make_solver("multistart", **options)
+
+
+def test_applies_where_the_local_solver_applies():
+    with pytest.raises(NotApplicable, match="sqsd"):
+        solve(constrained_well(), "multistart", local="sqsd")
+    assert solve(double_well(), "multistart[local='sqsd']").x[0] < 0
