@@ -22,6 +22,8 @@ from collections.abc import Iterable, Iterator
 from multiprocessing.connection import Connection, wait
 from typing import Any
 
+from solvers._deadline import set_run_deadline
+
 from ._plan import RunSpec
 from ._worker import execute, spec_row
 
@@ -65,6 +67,7 @@ def _worker_main(conn: Connection, parent: int | None = None) -> None:
             return
         if spec is None:
             return
+        set_run_deadline(spec.timeout)  # solvers that can stop early with an answer read it (multistart)
         conn.send(execute(spec))
 
 

@@ -30,11 +30,14 @@ import numpy as np
 from problems import BudgetExhausted, Oracle, Problem
 
 from ._base import AbstractSolver, Check, at_least, between, final, option, positive
+from ._deadline import run_deadline
 from ._registry import make_solver
 from ._result import SolverOutput, Status
 from .dynamic_q_plus import DynamicQPlus
 
 __all__ = ["Multistart", "bayes_confidence", "sampling_box"]
+
+DEADLINE_MARGIN = 0.5  # seconds kept for the end of the run (the harness's last evaluations, the row)
 
 
 def bayes_confidence(n: int, r: int) -> float:
@@ -100,9 +103,10 @@ class Multistart(AbstractSolver):
     Start 1 is x0; the others are drawn uniformly from `sampling_box` with a fixed seed.  After
     each run, the best end is the lowest f among feasible converged ends (violation <=
     ``feas_tol``); r counts the ends within ``f_same`` of it (relative to max(1, |f|)).  Stops
-    when `bayes_confidence` (n, r) >= ``confidence`` (status converged), or at ``max_starts``
-    or ``max_time`` (status max_iter: the best end is returned, the rule did not certify it).
-    A local run that raises is recorded as a failed start; the search goes on.
+    when `bayes_confidence` (n, r) >= ``confidence`` (status converged), or at ``max_starts``,
+    ``max_time`` or the harness's deadline for the run (`solvers._deadline`: the next local
+    run would not fit) with status max_iter: the best end is returned, the rule did not
+    certify it.  A local run that raises is recorded as a failed start; the search goes on.
     """
 
     name = "multistart"
@@ -179,15 +183,18 @@ class Multistart(AbstractSolver):
         x0 = oracle.x0  # as given: the first run is exactly the local solver's own run
         lo, hi = sampling_box(np.clip(x0, oracle.lower, oracle.upper), oracle.lower, oracle.upper, self.spread)
         rng = np.random.default_rng(self.seed)
+        deadline, longest = run_deadline(), 0.0
         ends: list[_End] = []
         q, stop = 0.0, "max_starts"
         for k in range(self.max_starts):
             start = x0 if k == 0 else rng.uniform(lo, hi)
+            t_run = time.perf_counter()
             try:
                 ends.append(self._run(oracle, start))
             except BudgetExhausted:
                 stop = "budget"
                 break
+            longest = max(longest, time.perf_counter() - t_run)
             good = [e for e in ends if self._good(e)]
             if good:
                 best = min(good, key=lambda e: e.f)
@@ -198,6 +205,11 @@ class Multistart(AbstractSolver):
                     break
             if self.max_time is not None and time.perf_counter() - t0 >= self.max_time:
                 stop = "max_time"
+                break
+            # under the harness: a run killed at its time limit keeps nothing, so stop while the
+            # next local run (predicted: twice the longest so far) still fits
+            if deadline is not None and time.time() + 2.0 * longest + DEADLINE_MARGIN > deadline:
+                stop = "deadline"
                 break
         return self._output(oracle, ends, q, stop)
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 import pytest
@@ -11,6 +12,7 @@ from hypothesis import strategies as st
 
 from problems import Problem, ProblemError
 from solvers import NotApplicable, Status, make_solver, solve
+from solvers._deadline import DEADLINE_ENV, run_deadline, set_run_deadline
 from solvers.multistart import Multistart, bayes_confidence, sampling_box
 
 
@@ -137,3 +139,24 @@ def test_applies_where_the_local_solver_applies():
     with pytest.raises(NotApplicable, match="sqsd"):
         solve(constrained_well(), "multistart", local="sqsd")
     assert solve(double_well(), "multistart[local='sqsd']").x[0] < 0
+
+
+def test_stops_in_time_for_the_harness_deadline(monkeypatch):
+    monkeypatch.setenv(DEADLINE_ENV, repr(time.time() + 0.1))  # less than the margin: one run only
+    r = solve(double_well(), "multistart")
+    assert r.status is Status.MAX_ITER and r.extra["stopped_by"] == "deadline" and r.nit == 1
+    monkeypatch.setenv(DEADLINE_ENV, repr(time.time() + 3600))
+    assert solve(double_well(), "multistart").extra["stopped_by"] == "confidence"
+
+
+def test_run_deadline_set_and_cleared(monkeypatch):
+    monkeypatch.delenv(DEADLINE_ENV, raising=False)
+    assert run_deadline() is None
+    set_run_deadline(10.0)
+    assert 9.0 < run_deadline() - time.time() <= 10.0
+    for none in (None, 0.0, math.inf):
+        set_run_deadline(10.0)
+        set_run_deadline(none)
+        assert run_deadline() is None
+    monkeypatch.setenv(DEADLINE_ENV, "not a number")
+    assert run_deadline() is None
