@@ -36,7 +36,7 @@ RHO_READING = ("thesis Sec. 3.4: 'except for problems 72 and 106 where step limi
                "used respectively' (garbled); read as rho = 100 for both 72 and 106")
 
 SOLVERS = ("dynamic-q", "dynamic-q-plus", "lfopc", "etopc", "scipy-slsqp", "scipy-trust-constr", "ipopt",
-           "nlopt-mma", "nlopt-slsqp", "multistart")
+           "nlopt-mma", "nlopt-slsqp")
 
 
 def problem_ids() -> list[str]:
