@@ -8,7 +8,10 @@ stored runs (columns of `harness._record.ROW_COLUMNS`), ours beside the thesis's
 from __future__ import annotations
 
 import dataclasses
+import math
+from typing import Any
 
+import numpy as np
 import pandas as pd
 
 __all__ = ["Table", "count", "count_cell", "column_flags"]
@@ -63,3 +66,11 @@ def column_flags(frame: pd.DataFrame, **columns: list[bool]) -> pd.DataFrame | N
     for name, values in columns.items():
         flags[name] = list(values)
     return flags
+
+
+def run_end(row: Any) -> tuple[np.ndarray, float, float]:
+    """A stored run's end: x (empty if none), f and the largest violation (NaN where missing)."""
+    x = np.asarray(row["x"], dtype=float) if row["x"] is not None else np.array([])
+    f = float(row["f"]) if row["f"] is not None and pd.notna(row["f"]) else math.nan
+    viol = float(row["max_violation"]) if pd.notna(row["max_violation"]) else math.nan
+    return x, f, viol

@@ -12,10 +12,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import numpy as np
 import pandas as pd
 
-from ._base import Table, column_flags, count_cell
+from ._base import Table, column_flags, count_cell, run_end
 from .rpr2 import _decoded, _evaluate, _fmt_d, _num, _status
 
 __all__ = ["tables", "AT_MINIMUM_REL", "FEAS_TOL"]
@@ -54,9 +53,7 @@ def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
         order = {s: k for k, s in enumerate(SOLVERS)}
         runs = runs.assign(_o=[order.get(s, len(order)) for s in runs["solver"]]).sort_values(["start", "_o"])
         for _, r in runs.iterrows():
-            x = np.asarray(r["x"], dtype=float) if r["x"] is not None else np.array([])
-            f = float(r["f"]) if r["f"] is not None and pd.notna(r["f"]) else math.nan
-            viol = float(r["max_violation"]) if pd.notna(r["max_violation"]) else math.nan
+            x, f, viol = run_end(r)
             ev = _evaluate("e", x) if x.size == 5 else {}
             at, ok = _minimum_of(f, viol, minima)
             rows.append({"start": r["start"], "solver": r["solver"], "status": _status(r),

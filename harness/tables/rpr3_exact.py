@@ -12,10 +12,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import numpy as np
 import pandas as pd
 
-from ._base import Table, column_flags, count_cell
+from ._base import Table, column_flags, count_cell, run_end
 from .rpr2 import _decoded, _fmt_d, _num, _status
 
 __all__ = ["tables", "AT_OPTIMUM_REL", "FEAS_TOL"]
@@ -60,9 +59,8 @@ def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
         ours = runs[(runs["problem"] == f"rpr3-{kind}-exact") & (runs["start"] == pname)]
         ours = ours.assign(_o=[order.get(s, len(order)) for s in ours["solver"]]).sort_values("_o")
         for _, r in ours.iterrows():
-            x = np.asarray(r["x"], dtype=float) if r["x"] is not None else np.array([])
-            t = -float(r["f"]) if r["f"] is not None and pd.notna(r["f"]) else math.nan
-            viol = float(r["max_violation"]) if pd.notna(r["max_violation"]) else math.nan
+            x, f, viol = run_end(r)
+            t = -f
             at, ok = _reached(t, viol, opt)
             rows.append({"synthesis": NAMES[kind], "P": pname, "solver": r["solver"], "status": _status(r),
                          "N^fg": count_cell(r["nfg"]), "t* = min kappa^-1": _num(t, ".4f"),
