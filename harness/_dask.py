@@ -32,13 +32,14 @@ __all__ = ["dask_map", "run_isolated"]
 _LOCAL = threading.local()
 
 
-NUMERIC_ENV = ("OPENBLAS_CORETYPE", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+NUMERIC_ENV = ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
+               "MKL_NUM_THREADS")
 _ENV_LOCK = threading.Lock()
 _DAEMON_LOCK = threading.Lock()  # guards the toggle of the process's daemon flag in `_new_slot`
 
 
 def numeric_env() -> dict[str, str | None]:
-    """This process's numerical environment: BLAS kernels and thread counts (None: unset)."""
+    """This process's numerical environment: BLAS and NumPy kernels, thread counts (None: unset)."""
     return {v: os.environ.get(v) for v in NUMERIC_ENV}
 
 

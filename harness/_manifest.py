@@ -83,8 +83,9 @@ def environment() -> dict[str, Any]:
         "machine": {"hostname": socket.gethostname(), "platform": platform.platform(),
                     "processor": platform.processor() or platform.machine(), "cpu_count": os.cpu_count(),
                     "cpu_model": _cpu_model(), "numpy_simd": _numpy_simd()},
-        # OpenBLAS kernels decide the rounding of rounding-sensitive runs (harness/_blas.py)
-        "blas": {v: os.environ.get(v) for v in ("OPENBLAS_CORETYPE", "OPENBLAS_NUM_THREADS")},
+        # OpenBLAS's and NumPy's kernels decide the rounding of rounding-sensitive runs (harness/_blas.py)
+        "blas": {v: os.environ.get(v) for v in ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES",
+                                                "OPENBLAS_NUM_THREADS")},
     }
 
 

@@ -31,3 +31,39 @@ def test_user_setting_wins_and_harness_entry_point_pins_before_numpy():
     env = {**os.environ, "OPENBLAS_CORETYPE": "Sandybridge", "OPENBLAS_NUM_THREADS": "3"}
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["Sandybridge", "3"]
+
+
+def test_numpy_pin_names_follow_the_installed_numpy(monkeypatch):
+    import importlib.metadata as md
+
+    monkeypatch.setattr(md, "version", lambda name: "2.4.6")
+    assert _blas.numpy_simd_disable() == "X86_V4 AVX512_ICL AVX512_SPR"
+    monkeypatch.setattr(md, "version", lambda name: "1.26.4")
+    assert "AVX512_SKX" in _blas.numpy_simd_disable().split()
+    assert "X86_V4" not in _blas.numpy_simd_disable().split()
+
+
+def _dispatched(env: dict[str, str]) -> list[str]:
+    """NumPy's dispatch targets in use in a fresh interpreter that pins first, as the harness does."""
+    code = ("from harness._blas import pin_blas; pin_blas(); "
+            "from numpy._core._multiarray_umath import __cpu_dispatch__ as d, __cpu_features__ as f; "
+            "print(' '.join(k for k in d if f.get(k)))")
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    return out.stdout.split()
+
+
+def test_numpy_simd_pin_keeps_avx512_machines_on_the_avx2_loops():
+    if not _blas._has_avx512():
+        pytest.skip("no AVX-512: NumPy's loops are the reference ones already")
+    pytest.importorskip("numpy._core._multiarray_umath")  # NumPy >= 2
+    env = {k: v for k, v in os.environ.items() if k != "NPY_DISABLE_CPU_FEATURES"}
+    pinned = _dispatched(env)
+    assert "X86_V4" not in pinned and not any(k.startswith("AVX512") for k in pinned)
+    native = _dispatched({**env, "NPY_DISABLE_CPU_FEATURES": ""})  # the user's setting wins
+    assert len(native) > len(pinned)
+
+
+def test_numpy_pin_in_force_for_the_test_session():
+    if not _blas._has_avx512():
+        pytest.skip("no AVX-512")
+    assert os.environ.get("NPY_DISABLE_CPU_FEATURES")
