@@ -67,3 +67,14 @@ def test_numpy_pin_in_force_for_the_test_session():
     if not _blas._has_avx512():
         pytest.skip("no AVX-512")
     assert os.environ.get("NPY_DISABLE_CPU_FEATURES")
+
+
+def test_manifest_records_the_pins_and_the_loops_in_use():
+    from harness._manifest import environment
+
+    env = environment()
+    assert set(env["blas"]) == {"OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES", "OPENBLAS_NUM_THREADS"}
+    assert env["blas"]["NPY_DISABLE_CPU_FEATURES"] == os.environ.get("NPY_DISABLE_CPU_FEATURES")
+    simd = env["machine"]["numpy_simd"]
+    if simd is not None and _blas._has_avx512() and os.environ.get("NPY_DISABLE_CPU_FEATURES"):
+        assert "X86_V4" not in simd  # the pinned test session runs NumPy's AVX2 loops

@@ -49,9 +49,10 @@ def test_dask_workers_without_the_blas_pin_give_local_counts(tmp_path, monkeypat
     pinned = dict(os.environ)
     monkeypatch.setenv("OPENBLAS_CORETYPE", "SkylakeX")  # what an unpinned worker on this CPU would load
     monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")
+    monkeypatch.setenv("NPY_DISABLE_CPU_FEATURES", "")  # and NumPy's native loops
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster:
-        for k in ("OPENBLAS_CORETYPE", "OPENBLAS_NUM_THREADS"):  # the harness process itself is pinned
+        for k in ("OPENBLAS_CORETYPE", "OPENBLAS_NUM_THREADS", "NPY_DISABLE_CPU_FEATURES"):  # the harness is pinned
             monkeypatch.setenv(k, pinned[k]) if k in pinned else monkeypatch.delenv(k)
         harness.run_suite("appendix-a", solvers=["sqsd", "scipy-bfgs"], problems=cases, out=tmp_path / "dask",
                           executor="dask", scheduler=cluster.scheduler_address, progress=None)
@@ -62,6 +63,7 @@ def test_dask_workers_without_the_blas_pin_give_local_counts(tmp_path, monkeypat
     manifest = json.loads((tmp_path / "dask" / "appendix-a" / "manifest.json").read_text())
     workers = manifest["latest"]["dask_workers"]
     assert workers and all(w["OPENBLAS_CORETYPE"] == pinned.get("OPENBLAS_CORETYPE") for w in workers.values())
+    assert all(w["NPY_DISABLE_CPU_FEATURES"] == pinned.get("NPY_DISABLE_CPU_FEATURES") for w in workers.values())
 
 
 def test_new_slot_keeps_the_daemon_flag_off_for_every_thread(monkeypatch):
