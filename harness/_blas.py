@@ -92,7 +92,7 @@ def pin_blas(threads: bool = True) -> str | None:
         if "numpy" in sys.modules:
             import warnings
 
-            warnings.warn("pin_blas(): NumPy is already loaded, OpenBLAS keeps its native kernels; "
+            warnings.warn("pin_blas(): NumPy is already loaded, OpenBLAS and NumPy keep their native kernels; "
                           "counts of rounding-sensitive runs may differ from the committed results",
                           RuntimeWarning, stacklevel=2)
             return None
