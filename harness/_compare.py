@@ -4,7 +4,9 @@ Runs are matched on (suite, case_id, solver, settings_hash), then - for runs who
 settings changed (a new option, a new default) - on (suite, case_id, solver) where that
 is unique on both sides.  A regression is a run solved in OLD and unsolved in NEW, or a
 run solved in both whose N^fg grew by more than ``nfg_tol`` (default 10%), or, when
-``rel_error_factor`` is given, whose E^r grew by more than that factor (above 1e-12).
+``rel_error_factor`` is given, whose E^r grew by more than that factor (above 1e-12).  A
+run that timed out in OLD and finished in NEW is "finished in time", neither an
+improvement nor a regression: the time limit depends on the machine.
 
 A baseline is the deterministic part of stored runs (counts, status, f, E^r; never
 times) in ``<dir>/<suite>/counts.csv``: small, diff-able, committed.
@@ -75,6 +77,11 @@ def _same(a: object, b: object) -> bool:
 
 def _verdict(r: pd.Series, nfg_tol: float, rel_error_factor: float | None) -> str:
     so, sn = bool(r.success_old), bool(r.success_new)
+    if r.status_old == "timeout" and r.status_new != "timeout":
+        # the old run hit its wall-clock limit: a faster machine or a quieter one finishes it, so
+        # this is a matter of time, not of counts (a new time-out, by contrast, stays a regression:
+        # it is how a hang or a slowdown shows)
+        return f"finished in time: timeout -> {r.status_new}" + (" (solved)" if sn else "")
     if so and not sn:
         return f"REGRESSION: solved -> unsolved ({r.status_new})"
     if sn and not so:

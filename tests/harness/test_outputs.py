@@ -99,3 +99,15 @@ def test_compare_and_baseline(stored, tmp_path, capsys):
     moved.loc[moved.settings_hash == moved.settings_hash.iloc[0], "settings_hash"] = "changed"
     c = compare_runs(old, moved)
     assert len(c.changes) == len(old) and len(c.regressions) == 0
+
+
+def test_compare_a_finished_time_out_is_a_matter_of_time_not_an_improvement():
+    old = _runs([{"case_id": "p1", "solver": "a", "nfg": np.nan, "success": False, "status": "timeout",
+                  "rel_error": np.nan, "f": np.nan},
+                 {"case_id": "p2", "solver": "a", "nfg": 12, "success": True, "rel_error": 0.0, "f": 0.0}])
+    new = _runs([{"case_id": "p1", "solver": "a", "nfg": 40, "success": True, "rel_error": 0.0, "f": 0.0},
+                 {"case_id": "p2", "solver": "a", "nfg": np.nan, "success": False, "status": "timeout",
+                  "rel_error": np.nan, "f": np.nan}])
+    v = compare_runs(old, new).changes.set_index("case_id").verdict
+    assert v["p1"] == "finished in time: timeout -> converged (solved)"
+    assert v["p2"].startswith("REGRESSION: solved -> unsolved (timeout)")  # a new time-out still counts
