@@ -28,11 +28,17 @@ Must run before NumPy is imported: this module imports nothing numerical.
 
 from __future__ import annotations
 
+import functools
 import os
 import platform
 import sys
 
-__all__ = ["pin_blas", "REFERENCE_CORETYPE", "numpy_simd_disable"]
+__all__ = ["pin_blas", "REFERENCE_CORETYPE", "numpy_simd_disable", "KERNEL_ENV", "THREAD_ENV"]
+
+# the variables the pin sets, in one place: the Dask executor hands them to its workers'
+# children and the manifest records them
+KERNEL_ENV = ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES")
+THREAD_ENV = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
 REFERENCE_CORETYPE = "Haswell"  # the kernels of the committed results (results/*/manifest.json)
 # NumPy's x86 dispatch targets above AVX2 (the committed results: ``numpy_simd`` X86_V3).
@@ -44,6 +50,7 @@ _ABOVE_AVX2 = {
 }
 
 
+@functools.cache
 def _cpu_flags() -> frozenset[str]:
     """The x86-64 CPU's feature flags from /proc/cpuinfo (empty elsewhere)."""
     if platform.machine().lower() not in ("x86_64", "amd64"):
@@ -84,12 +91,13 @@ def pin_blas(threads: bool = True) -> str | None:
     already set.  Returns the core type in force (None: native).  Warns if NumPy is already
     loaded, since OpenBLAS and NumPy then ignore the settings."""
     if threads:
-        for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        for var in THREAD_ENV:
             os.environ.setdefault(var, "1")
-    if "NPY_DISABLE_CPU_FEATURES" not in os.environ and _has_avx512() and "numpy" not in sys.modules:
+    loaded = "numpy" in sys.modules  # then OpenBLAS and NumPy have chosen their kernels already
+    if "NPY_DISABLE_CPU_FEATURES" not in os.environ and _has_avx512() and not loaded:
         os.environ["NPY_DISABLE_CPU_FEATURES"] = numpy_simd_disable()
     if "OPENBLAS_CORETYPE" not in os.environ and _has_avx2():
-        if "numpy" in sys.modules:
+        if loaded:
             import warnings
 
             warnings.warn("pin_blas(): NumPy is already loaded, OpenBLAS and NumPy keep their native kernels; "

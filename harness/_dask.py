@@ -23,6 +23,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
+from ._blas import KERNEL_ENV, THREAD_ENV
 from ._plan import HarnessArgumentError, RunSpec
 from ._pool import Slot
 from ._worker import spec_row
@@ -32,8 +33,7 @@ __all__ = ["dask_map", "run_isolated"]
 _LOCAL = threading.local()
 
 
-NUMERIC_ENV = ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
-               "MKL_NUM_THREADS")
+NUMERIC_ENV = KERNEL_ENV + THREAD_ENV
 _ENV_LOCK = threading.Lock()
 _DAEMON_LOCK = threading.Lock()  # guards the toggle of the process's daemon flag in `_new_slot`
 

@@ -18,6 +18,7 @@ import subprocess
 import sys
 from typing import Any
 
+from ._blas import KERNEL_ENV
 from ._store import _atomic_write_bytes
 
 __all__ = ["environment", "record_session"]
@@ -84,8 +85,7 @@ def environment() -> dict[str, Any]:
                     "processor": platform.processor() or platform.machine(), "cpu_count": os.cpu_count(),
                     "cpu_model": _cpu_model(), "numpy_simd": _numpy_simd()},
         # OpenBLAS's and NumPy's kernels decide the rounding of rounding-sensitive runs (harness/_blas.py)
-        "blas": {v: os.environ.get(v) for v in ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES",
-                                                "OPENBLAS_NUM_THREADS")},
+        "blas": {v: os.environ.get(v) for v in (*KERNEL_ENV, "OPENBLAS_NUM_THREADS")},
     }
 
 
