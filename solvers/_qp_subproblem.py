@@ -101,7 +101,11 @@ class _CscView:
 
     @property
     def nnz(self) -> int:
-        return int(self.data.size)
+        return int(np.size(self.data))
+
+    def as_lists(self) -> _CscView:
+        """The same matrix with its arrays as Python lists, the form Clarabel reads fastest."""
+        return _CscView(self.shape, self.data.tolist(), self.indices.tolist(), self.indptr.tolist())
 
 
 def _csc(dense: np.ndarray) -> _CscView:
@@ -190,15 +194,17 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
         diag = np.broadcast_to(sig, (n,)).astype(float)
         P = _CscView((nv, nv), diag, np.arange(n, dtype=np.int64),
                      np.r_[np.arange(n + 1), np.full(ne, n)].astype(np.int64))
-    c = np.concatenate((gf, np.full(ne, mu)))
+    c = gf.tolist() + [float(mu)] * ne
     # rows: equalities (ZeroCone), then inequalities, elastic >= 0, box (Nonnegative): A v + s = b.
     # Built in CSC form from cached index arrays: scipy's sparse stacking, and even a dense
     # assembly scanned for its nonzeros, cost more than the interior-point solve at these sizes.
     A_csc = _constraint_csc(Jg, Jh, n, p, q)
     m = A_csc.shape[0]
-    b = np.concatenate([-h0, -g0, np.zeros(ne), d_up, -d_lo])
+    b = (-h0).tolist() + (-g0).tolist() + [0.0] * ne + d_up.tolist() + (-d_lo).tolist()
     cones = ([clarabel.ZeroConeT(q)] if q else []) + [clarabel.NonnegativeConeT(m - q)]
-    sol = clarabel.DefaultSolver(P, c, A_csc, b, cones, _settings()).solve()
+    # Clarabel copies its inputs element by element; from Python lists that is a quarter faster
+    # than from NumPy arrays (the same doubles, so the same solve)
+    sol = clarabel.DefaultSolver(P.as_lists(), c, A_csc.as_lists(), b, cones, _settings()).solve()
     v = np.asarray(sol.x)
     z = np.asarray(sol.z)
     # the elastic QP is always feasible and bounded: a stalled interior point (insufficient progress,

@@ -53,11 +53,40 @@ def _finite(ev: dict[str, Any]) -> bool:
 
 
 def _violation(ev: dict[str, Any]) -> float:
-    return max(float(ev["ineq"].max(initial=0.0)), float(np.abs(ev["eq"]).max(initial=0.0)))
+    g, h = ev["ineq"], ev["eq"]
+    return max(float(g.max(initial=0.0)) if g.size else 0.0, float(np.abs(h).max()) if h.size else 0.0)
 
 
 def _l1_infeas(ev: dict[str, Any]) -> float:
-    return float(np.maximum(ev["ineq"], 0.0).sum() + np.abs(ev["eq"]).sum())
+    # empty blocks skipped: these run at every point, and a NumPy call on an empty array costs as
+    # much as on a short one (adding the empty block's 0.0 to a sum >= 0 changes nothing)
+    g, h = ev["ineq"], ev["eq"]
+    if not h.size:
+        return float(np.maximum(g, 0.0).sum()) if g.size else 0.0
+    if not g.size:
+        return float(np.abs(h).sum())
+    return float(np.maximum(g, 0.0).sum() + np.abs(h).sum())
+
+
+def _lagrangian_gradient_change(ev_old: dict[str, Any], ev_new: dict[str, Any], lam: np.ndarray,
+                                nu: np.ndarray) -> np.ndarray:
+    """y = grad L(x_new) - grad L(x_old) at fixed multipliers, the empty blocks skipped (the same sum)."""
+    y = ev_new["g"] - ev_old["g"]
+    if lam.size:
+        y = y + (ev_new["ineq_jac"] - ev_old["ineq_jac"]).T @ lam
+    if nu.size:
+        y = y + (ev_new["eq_jac"] - ev_old["eq_jac"]).T @ nu
+    return y
+
+
+def _lagrangian_gradient(ev: dict[str, Any], lam: np.ndarray, nu: np.ndarray) -> np.ndarray:
+    """grad f + Jg^T lam + Jh^T nu, the empty blocks skipped (the same sum)."""
+    out = ev["g"]
+    if lam.size:
+        out = out + ev["ineq_jac"].T @ lam
+    if nu.size:
+        out = out + ev["eq_jac"].T @ nu
+    return out
 
 
 class _ScaledVariables:
@@ -161,9 +190,12 @@ class DynamicQPlus(AbstractSolver):
         dd = float(dx @ dx)
         if dd <= 0.0:
             return None
-        L_old = ev_old["f"] + float(lam @ ev_old["ineq"]) + float(nu @ ev_old["eq"])
-        L_new = ev_new["f"] + float(lam @ ev_new["ineq"]) + float(nu @ ev_new["eq"])
-        gL = ev_old["g"] + ev_old["ineq_jac"].T @ lam + ev_old["eq_jac"].T @ nu
+        L_old, L_new = ev_old["f"], ev_new["f"]
+        if lam.size:
+            L_old, L_new = L_old + float(lam @ ev_old["ineq"]), L_new + float(lam @ ev_new["ineq"])
+        if nu.size:
+            L_old, L_new = L_old + float(nu @ ev_old["eq"]), L_new + float(nu @ ev_new["eq"])
+        gL = _lagrangian_gradient(ev_old, lam, nu)
         return 2.0 * (L_new - L_old - float(gL @ dx)) / dd
 
     def _update(self, sigma, s_sph, ev_old, ev_new, lam, nu, dx, first: bool) -> np.ndarray:
@@ -178,8 +210,7 @@ class DynamicQPlus(AbstractSolver):
         if self.curvature == "spherical" or first:
             new = np.full(dx.size, s_sph)
         else:
-            y = (ev_new["g"] - ev_old["g"] + (ev_new["ineq_jac"] - ev_old["ineq_jac"]).T @ lam
-                 + (ev_new["eq_jac"] - ev_old["eq_jac"]).T @ nu)
+            y = _lagrangian_gradient_change(ev_old, ev_new, lam, nu)
             s2 = dx * dx
             new = sigma + (float(dx @ y) - float(s2 @ sigma)) / float(s2 @ s2) * s2
         new = np.clip(new, self.sigma_min, self.sigma_max)
@@ -195,8 +226,7 @@ class DynamicQPlus(AbstractSolver):
         one-number model with the same one point per iteration.  Damping (Powell 1978) keeps B
         positive definite when the Lagrangian's curvature along dx is negative or tiny.
         """
-        y = (ev_new["g"] - ev_old["g"] + (ev_new["ineq_jac"] - ev_old["ineq_jac"]).T @ lam
-             + (ev_new["eq_jac"] - ev_old["eq_jac"]).T @ nu)
+        y = _lagrangian_gradient_change(ev_old, ev_new, lam, nu)
         if first:
             B = float(np.clip(s_sph, self.sigma_min, self.sigma_max)) * np.eye(dx.size)
         Bs = B @ dx
@@ -209,8 +239,15 @@ class DynamicQPlus(AbstractSolver):
         sr = float(dx @ r)
         if sr <= 1e-12 * sBs:
             return B
-        Bn = B - Bs[:, None] * Bs / sBs + r[:, None] * r / sr  # np.outer's own arithmetic, without its wrapper
-        Bn = 0.5 * (Bn + Bn.T)
+        # B - Bs Bs^T / sBs + r r^T / sr, np.outer's own arithmetic, in place (the same roundings)
+        t = Bs[:, None] * Bs
+        t /= sBs
+        Bn = B - t
+        t = r[:, None] * r
+        t /= sr
+        Bn += t
+        Bn = Bn + Bn.T
+        Bn *= 0.5
         # safeguard: eigenvalues within [sigma_min, sigma_max] (B stays positive definite)
         if self._inside_bounds(Bn):
             return Bn
@@ -229,7 +266,7 @@ class DynamicQPlus(AbstractSolver):
         if not (tr <= self.sigma_max):
             return False
         shifted = B.copy()
-        shifted.flat[::B.shape[0] + 1] -= self.sigma_min + 1e-10 * tr  # B - c I without building I
+        shifted.ravel()[::B.shape[0] + 1] -= self.sigma_min + 1e-10 * tr  # B - c I without building I (ravel: a view)
         # LAPACK's Cholesky (as np.linalg.cholesky) called directly: info > 0 = not positive definite
         return dpotrf(shifted, lower=1, clean=0, overwrite_a=1)[1] == 0
 
@@ -307,9 +344,15 @@ class DynamicQPlus(AbstractSolver):
         sg = 1.0 / np.maximum(np.linalg.norm(ev0["ineq_jac"], axis=1), 1.0)
         sh = 1.0 / np.maximum(np.linalg.norm(ev0["eq_jac"], axis=1), 1.0)
 
+        sg_rows, sh_rows = sg[:, None], sh[:, None]
+        has_ineq, has_eq = oracle.n_ineq > 0, oracle.n_eq > 0
+
         def scaled(e: dict[str, Any]) -> dict[str, Any]:
-            out = {"f": sf * e["f"], "g": sf * e["g"], "ineq": sg * e["ineq"], "ineq_jac": sg[:, None] * e["ineq_jac"],
-                   "eq": sh * e["eq"], "eq_jac": sh[:, None] * e["eq_jac"], "raw": e}
+            out = {"f": sf * e["f"], "g": sf * e["g"], "raw": e}
+            # an empty block is passed through: scaling it would give an equal empty array
+            out["ineq"], out["ineq_jac"] = ((sg * e["ineq"], sg_rows * e["ineq_jac"]) if has_ineq
+                                            else (e["ineq"], e["ineq_jac"]))
+            out["eq"], out["eq_jac"] = (sh * e["eq"], sh_rows * e["eq_jac"]) if has_eq else (e["eq"], e["eq_jac"])
             out["l1"] = _l1_infeas(out)  # the merit's infeasibility, used several times per point
             out["viol"] = _violation(e)  # unscaled, for the feasibility tests
             return out
@@ -327,15 +370,17 @@ class DynamicQPlus(AbstractSolver):
         restarted, s_last = False, 1.0  # [OWN] one restart of the quasi-Newton matrix before stopping
         recent: list[dict[str, Any]] = [ev]  # [OWN] non-monotone reference: last accepted points
         for it in range(1, self.max_iter + 1):
-            res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
-                                   np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+            d_lo, d_up = np.maximum(lo - x, -rho), np.minimum(up - x, rho)  # simple bounds (3.7), move limit (3.8)
+            res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
             if not res.ok:  # [OWN] numerical trouble in the QP solver: retry with a smaller move limit
                 rho *= self.shrink
                 if rho / (1.0 + float(np.abs(x).max(initial=0.0))) < 1e-3 * self.eps_x:
                     return SolverOutput(x, Status.ERROR, "QP subproblem failed", nit=it,
                                         extra=self._extra(log, n_rej))
                 continue
-            mult = max(float(res.lam.max(initial=0.0)), float(np.abs(res.nu).max(initial=0.0)))
+            # largest multiplier (lam >= 0 already); empty blocks skipped
+            mult = max(float(res.lam.max()) if res.lam.size else 0.0,
+                       float(np.abs(res.nu).max()) if res.nu.size else 0.0)
             if mult > 0.5 * mu and res.elastic <= self.eps_c:
                 # [OWN] the exact-penalty weight must exceed the multipliers.  Not raised while the
                 # slacks are in use: then the multipliers sit at mu because the move limit cuts the
@@ -343,7 +388,7 @@ class DynamicQPlus(AbstractSolver):
                 # a merit-stationary infeasible point raises it below
                 mu = 2.0 * mult
                 res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
-                                       np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+                                       d_lo, d_up, mu)
             elif (self.penalty_decrease and res.elastic <= self.eps_c and ev["viol"] <= self.eps_c
                   and mu > 100.0 * max(float(self.mu0), 2.0 * mult)):
                 # [OWN] option: lower an overgrown weight.  Steering can raise mu by 1e4 far from the
@@ -352,7 +397,7 @@ class DynamicQPlus(AbstractSolver):
                 # multipliers the QP step does not depend on mu, so only the merit changes
                 mu = 10.0 * max(float(self.mu0), 2.0 * mult)
             if self.steering and res.elastic > self.eps_c and mu < MU_MAX:
-                res, mu = self._steer(res, mu, ev, sigma, np.maximum(lo - x, -rho), np.minimum(up - x, rho))
+                res, mu = self._steer(res, mu, ev, sigma, d_lo, d_up)
             if self.constraint_curvature and (np.any(bq) or np.any(cq)):
                 # [OWN] the thesis's constraint curvatures (3.6) as a model-based second-order
                 # correction: g~_j(d) = g_j + grad g_j^T d + b_j/2 ||d||^2 with ||d|| frozen at the
@@ -362,8 +407,7 @@ class DynamicQPlus(AbstractSolver):
                 for _ in range(2):
                     dd = float(rc.d @ rc.d)
                     rc = solve_elastic_qp(ev["g"], sigma, ev["ineq"] + 0.5 * bq * dd, ev["ineq_jac"],
-                                          ev["eq"] + 0.5 * cq * dd, ev["eq_jac"],
-                                          np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+                                          ev["eq"] + 0.5 * cq * dd, ev["eq_jac"], d_lo, d_up, mu)
                 # predicted reduction of the curvature-corrected model at its own step; kept only if
                 # it is a descent step of that model
                 dd = float(rc.d @ rc.d)
@@ -390,7 +434,7 @@ class DynamicQPlus(AbstractSolver):
                 return SolverOutput(x, Status.FAILED if viol > self.eps_c else Status.CONVERGED,
                                     "no descent step for the l1 merit (stationary for the model)", nit=it,
                                     extra=self._extra(log, n_rej))
-            xt = np.clip(x + d, lo, up)
+            xt = np.minimum(np.maximum(x + d, lo), up)  # np.clip, without its wrapper
             evt = scaled(oracle.evaluate(xt))
             ok = _finite(evt)
             phit = evt["f"] + mu * evt["l1"] if ok else math.inf
@@ -404,22 +448,22 @@ class DynamicQPlus(AbstractSolver):
                 # constraint values at the trial point, so the corrected step follows curved constraints
                 # where the l1 merit rejected the plain one (Maratos effect; HS27, HS47).  One more point.
                 rs = solve_elastic_qp(ev["g"], sigma, evt["ineq"] - ev["ineq_jac"] @ d, ev["ineq_jac"],
-                                      evt["eq"] - ev["eq_jac"] @ d, ev["eq_jac"],
-                                      np.maximum(lo - x, -rho), np.minimum(up - x, rho), mu)
+                                      evt["eq"] - ev["eq_jac"] @ d, ev["eq_jac"], d_lo, d_up, mu)
                 if rs.ok and float(np.abs(rs.d).max(initial=0.0)) > 0.0:
-                    xc = np.clip(x + rs.d, lo, up)
+                    xc = np.minimum(np.maximum(x + rs.d, lo), up)
                     evc = scaled(oracle.evaluate(xc))
                     if _finite(evc):
                         ratio_c = (phi_ref - (evc["f"] + mu * evc["l1"])) / pred
                         if ratio_c >= self.eta:
                             xt, evt, ratio, n_soc_step = xc, evc, ratio_c, 1
             log.append({"i": it, "f": ev["f"], "max_violation": viol, "rho": rho,
-                        "sigma": np.diag(sigma).copy() if np.ndim(sigma) == 2 else sigma, "mu": mu,
+                        "sigma": sigma.diagonal().copy() if sigma.ndim == 2 else sigma, "mu": mu,
                         "ratio": ratio, "elastic": res.elastic, "pred": pred, "dn": dn,
                         "soc": n_soc_step})
             lam_new, nu_new = res.lam, res.nu
+            dx = xt - x
             if ok:
-                s = self._curvature(ev, evt, lam_new, nu_new, xt - x)
+                s = self._curvature(ev, evt, lam_new, nu_new, dx)
                 if s is not None and math.isfinite(s):
                     s_last = s
             if ok and self.constraint_curvature:
@@ -431,7 +475,7 @@ class DynamicQPlus(AbstractSolver):
                     cq = two_point_curvature(evt["eq"], ev["eq"], ev["eq_jac"], xt - x)
             if ratio >= self.eta:
                 if ok and s is not None:
-                    sigma = self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x, first=n_upd == 0)
+                    sigma = self._update(sigma, s, ev, evt, lam_new, nu_new, dx, first=n_upd == 0)
                     n_upd += 1
                 if ratio >= 0.25 and dn >= 0.99 * rho:  # the box limited a useful step
                     rho *= 2.0
@@ -451,11 +495,10 @@ class DynamicQPlus(AbstractSolver):
                 n_rej += 1
                 rho = self.shrink * dn
                 if ok and s is not None and self.curvature == "bfgs":  # secant information of the trial
-                    sigma = self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x, first=n_upd == 0)
+                    sigma = self._update(sigma, s, ev, evt, lam_new, nu_new, dx, first=n_upd == 0)
                     n_upd += 1
                 elif ok and s is not None:  # the model was too optimistic along d: only raise curvatures
-                    sigma = np.maximum(sigma, self._update(sigma, s, ev, evt, lam_new, nu_new, xt - x,
-                                                           first=n_upd == 0))
+                    sigma = np.maximum(sigma, self._update(sigma, s, ev, evt, lam_new, nu_new, dx, first=n_upd == 0))
                     n_upd += 1
                 if rho / xs < 1e-3 * self.eps_x:
                     return SolverOutput(x, Status.CONVERGED if viol <= self.eps_c else Status.FAILED,
