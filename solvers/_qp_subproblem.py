@@ -12,6 +12,8 @@ The elastic variables s, t make the QP
 feasible whatever the move limit; when the linearized constraints can be met inside the box
 and mu exceeds the multipliers, s = t = 0 and the step is the ordinary SQP step (Fletcher's
 Sl1QP).  Solved exactly by Clarabel (interior point; dual variables give the multipliers).
+When Clarabel fails on it (with mu near 1e10 it has reported the bounded QP dual infeasible),
+the same QP with its objective divided by mu is solved once more.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ class ElasticQPResult:
     elastic: float
     model: float
     ok: bool
+    status: str = "Solved"  # Clarabel's status (of the retry, when there was one)
 
 
 def linearized_violations(d, g0, Jg, h0, Jh) -> tuple[float, float]:
@@ -194,7 +197,6 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
         diag = np.broadcast_to(sig, (n,)).astype(float)
         P = _CscView((nv, nv), diag, np.arange(n, dtype=np.int64),
                      np.r_[np.arange(n + 1), np.full(ne, n)].astype(np.int64))
-    c = gf.tolist() + [float(mu)] * ne
     # rows: equalities (ZeroCone), then inequalities, elastic >= 0, box (Nonnegative): A v + s = b.
     # Built in CSC form from cached index arrays: scipy's sparse stacking, and even a dense
     # assembly scanned for its nonzeros, cost more than the interior-point solve at these sizes.
@@ -204,17 +206,33 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     cones = ([clarabel.ZeroConeT(q)] if q else []) + [clarabel.NonnegativeConeT(m - q)]
     # Clarabel copies its inputs element by element; from Python lists that is a quarter faster
     # than from NumPy arrays (the same doubles, so the same solve)
-    sol = clarabel.DefaultSolver(P.as_lists(), c, A_csc.as_lists(), b, cones, _settings()).solve()
-    v = np.asarray(sol.x)
-    z = np.asarray(sol.z)
-    # the elastic QP is always feasible and bounded: a stalled interior point (insufficient progress,
-    # iteration cap) still returns a usable finite step; only non-finite output is a failure
-    ok = str(sol.status) in ("Solved", "AlmostSolved") or (
-        str(sol.status) in ("InsufficientProgress", "MaxIterations", "MaxTime", "AlmostPrimalInfeasible",
-                            "AlmostDualInfeasible") and bool(np.all(np.isfinite(v)) and np.all(np.isfinite(z))))
+    A_lists = A_csc.as_lists()
+    v, z, status, ok = _clarabel_solve(P.as_lists(), gf.tolist() + [float(mu)] * ne, A_lists, b, cones)
+    if not ok and mu > 1.0:
+        # [OWN] the same QP with its objective divided by mu (the same minimizer; the duals
+        # scale by 1/mu): the slack costs become 1 instead of up to 1e10
+        Ps = P.as_lists()
+        Ps.data = (np.asarray(P.data, dtype=float) / mu).tolist()
+        v, z, status, ok = _clarabel_solve(Ps, (gf / mu).tolist() + [1.0] * ne, A_lists, b, cones)
+        z = z * mu
     d = np.minimum(np.maximum(v[:n], d_lo), d_up) if ok else np.zeros(n)  # np.clip, without its wrapper
     nu = z[:q].copy() if ok else np.zeros(q)
     lam = np.maximum(z[q:q + p], 0.0) if ok else np.zeros(p)
     elastic = float(v[n:].sum()) if ok else 0.0
     model = l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu)
-    return ElasticQPResult(d, lam, nu, elastic, model, ok)
+    return ElasticQPResult(d, lam, nu, elastic, model, ok, status)
+
+
+def _clarabel_solve(P: _CscView, c: list[float], A: _CscView, b: list[float],
+                    cones: list) -> tuple[np.ndarray, np.ndarray, str, bool]:
+    """Clarabel's primal and dual solutions, its status, and whether the step is usable."""
+    sol = clarabel.DefaultSolver(P, c, A, b, cones, _settings()).solve()
+    v = np.asarray(sol.x)
+    z = np.asarray(sol.z)
+    status = str(sol.status)
+    # the elastic QP is always feasible and bounded: a stalled interior point (insufficient progress,
+    # iteration cap) still returns a usable finite step; only non-finite output is a failure
+    ok = status in ("Solved", "AlmostSolved") or (
+        status in ("InsufficientProgress", "MaxIterations", "MaxTime", "AlmostPrimalInfeasible",
+                   "AlmostDualInfeasible") and bool(np.all(np.isfinite(v)) and np.all(np.isfinite(z))))
+    return v, z, status, ok

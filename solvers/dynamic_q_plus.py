@@ -251,6 +251,8 @@ class DynamicQPlus(AbstractSolver):
         # safeguard: eigenvalues within [sigma_min, sigma_max] (B stays positive definite)
         if self._inside_bounds(Bn):
             return Bn
+        if not np.isfinite(Bn).all():  # [OWN] overflow in the outer products (CUTEst GAUSS2LS): keep B
+            return B
         w, V = np.linalg.eigh(Bn)
         if w[0] < self.sigma_min or w[-1] > self.sigma_max:
             Bn = (V * np.clip(w, self.sigma_min, self.sigma_max)) @ V.T
@@ -375,7 +377,8 @@ class DynamicQPlus(AbstractSolver):
             if not res.ok:  # [OWN] numerical trouble in the QP solver: retry with a smaller move limit
                 rho *= self.shrink
                 if rho / (1.0 + float(np.abs(x).max(initial=0.0))) < 1e-3 * self.eps_x:
-                    return SolverOutput(x, Status.ERROR, "QP subproblem failed", nit=it,
+                    return SolverOutput(x, Status.FAILED, f"QP subproblem failed (Clarabel: {res.status}, penalty "
+                                        f"weight {mu:.3g}) down to a collapsed move limit", nit=it,
                                         extra=self._extra(log, n_rej))
                 continue
             # largest multiplier (lam >= 0 already); empty blocks skipped

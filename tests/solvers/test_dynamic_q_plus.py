@@ -68,6 +68,41 @@ def test_elastic_mode_when_linearization_infeasible_in_box():
                                                np.zeros(0), np.zeros((0, 2)), 10.0))
 
 
+def test_elastic_qp_at_a_huge_penalty_weight_is_solved():
+    """CUTEst FLETCHER's subproblem at mu = 1e10: the equality h = 1 has a gradient of 1e-12, so
+    the slack takes all of it.  Clarabel reports this bounded QP dual infeasible; the retry with
+    the objective divided by mu solves it (and scales the multipliers back)."""
+    B = np.array([[9.326486834237778, -2.849809721169372, -11.578287215883677, 12.479686253286344],
+                  [-2.849809721169372, 1.386341280717227, 3.178123436950981, -3.710863705328208],
+                  [-11.578287215883677, 3.178123436950981, 14.65362066377001, -15.737439436576945],
+                  [12.479686253286344, -3.710863705328208, -15.737439436576945, 18.120265443187453]])
+    r = 0.7071067811865475
+    Jg = np.array([[-r, 0.0, r, 0.0], [0.0, -r, 0.0, r], [0.0, 0.0, -r, r]])
+    g0 = np.array([-5.790029959888157e-12, -4.631772753117136e-12, -7.036683372083074e-12])
+    Jh = 2.0783375020646016e-12 * np.array([[1.0, -1.0, -2.0, 2.0]])
+    gf = np.array([1.4142135623804601, 1.4142135623886551, 0.0, 0.0])
+    lo, up = np.array([-2.0, -2.0, -2.0, -3.865796571744795e-12]), np.full(4, 2.0)
+    res = solve_elastic_qp(gf, B, g0, Jg, np.array([1.0]), Jh, lo, up, 1e10)
+    assert res.ok and res.status == "Solved" and np.all(np.isfinite(res.d))
+    assert np.all(res.d >= lo) and np.all(res.d <= up)
+    assert res.elastic == pytest.approx(1.0, abs=1e-9)
+    assert res.nu[0] == pytest.approx(1e10, rel=1e-6)  # the multiplier sits at the penalty weight
+    assert np.all(res.lam >= 0.0) and np.all(res.lam < 1.0)
+
+
+def test_bfgs_update_that_overflows_keeps_the_matrix():
+    """CUTEst GAUSS2LS: a trial point whose gradient is 1e200 made r r^T overflow and the
+    quasi-Newton matrix infinite, so every later QP failed.  The update is now skipped."""
+    n = 3
+    B = 2.0 * np.eye(n)
+    old = {"g": np.zeros(n), "ineq_jac": np.zeros((0, n)), "eq_jac": np.zeros((0, n))}
+    new = {**old, "g": np.array([1e200, -1e200, 1e199])}
+    with np.errstate(over="ignore", invalid="ignore"):  # the overflow is the point of the test
+        out = DynamicQPlus()._bfgs(B, 1.0, old, new, np.zeros(0), np.zeros(0), np.array([1.0, -1.0, 0.1]),
+                                   first=False)
+    assert np.array_equal(out, B)
+
+
 def _point(gf, g0, Jg):
     ev = {"g": np.asarray(gf, float), "ineq": np.asarray(g0, float), "ineq_jac": np.asarray(Jg, float),
           "eq": np.zeros(0), "eq_jac": np.zeros((0, len(gf)))}
