@@ -227,6 +227,7 @@ class DynamicQPlus(AbstractSolver):
         positive definite when the Lagrangian's curvature along dx is negative or tiny.
         """
         y = _lagrangian_gradient_change(ev_old, ev_new, lam, nu)
+        B_in = B
         if first:
             B = float(np.clip(s_sph, self.sigma_min, self.sigma_max)) * np.eye(dx.size)
         Bs = B @ dx
@@ -251,8 +252,8 @@ class DynamicQPlus(AbstractSolver):
         # safeguard: eigenvalues within [sigma_min, sigma_max] (B stays positive definite)
         if self._inside_bounds(Bn):
             return Bn
-        if not np.isfinite(Bn).all():  # [OWN] overflow in the outer products (CUTEst GAUSS2LS): keep B
-            return B
+        if not np.isfinite(Bn).all():  # [OWN] overflow in the outer products (CUTEst GAUSS2LS): no update
+            return B_in
         w, V = np.linalg.eigh(Bn)
         if w[0] < self.sigma_min or w[-1] > self.sigma_max:
             Bn = (V * np.clip(w, self.sigma_min, self.sigma_max)) @ V.T

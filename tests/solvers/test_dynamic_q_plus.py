@@ -98,9 +98,10 @@ def test_bfgs_update_that_overflows_keeps_the_matrix():
     old = {"g": np.zeros(n), "ineq_jac": np.zeros((0, n)), "eq_jac": np.zeros((0, n))}
     new = {**old, "g": np.array([1e200, -1e200, 1e199])}
     with np.errstate(over="ignore", invalid="ignore"):  # the overflow is the point of the test
-        out = DynamicQPlus()._bfgs(B, 1.0, old, new, np.zeros(0), np.zeros(0), np.array([1.0, -1.0, 0.1]),
-                                   first=False)
-    assert np.array_equal(out, B)
+        for first in (False, True):  # the first update too keeps the matrix it was given (not sigma I)
+            out = DynamicQPlus()._bfgs(B, 1.0, old, new, np.zeros(0), np.zeros(0), np.array([1.0, -1.0, 0.1]),
+                                       first=first)
+            assert np.array_equal(out, B)
 
 
 def _point(gf, g0, Jg):
