@@ -11,6 +11,12 @@ point accepted by the band is also counted feasible). A zero band would leave MM
 conservative subproblems with an empty interior. ``LD_SLSQP`` takes equalities natively.
 
 x0 is projected onto the bounds first (NLopt requires a start within them).
+
+NLopt's failure results (FAILURE, INVALID_ARGS, OUT_OF_MEMORY) arrive as exceptions: in the
+SWIG-built wheels as ``nlopt.runtime_error`` / ``nlopt.invalid_argument`` (subclasses of
+``nlopt.exception``, not of Python's RuntimeError or ValueError) with an empty text. The
+adapter turns them into the result code and NLopt's own reason (``opt.get_errmsg()``, e.g.
+"bug: more than iter SQP iterations").
 """
 
 from __future__ import annotations
@@ -28,6 +34,11 @@ from ._result import SolverOutput, Status
 from .scipy_constrained import start_in_bounds
 
 __all__ = ["NloptMMA", "NloptSLSQP", "STATUS_MAP"]
+
+#: exceptions by which NLopt reports a failure result: SWIG's wrappers of C++'s std exceptions
+#: (nlopt.exception and subclasses) in the PyPI wheels, Python's own in other builds
+_NLOPT_FAILURES: tuple[type[BaseException], ...] = tuple(
+    e for e in (getattr(nlopt, "exception", None), RuntimeError, ValueError) if isinstance(e, type))
 
 #: NLopt result codes -> Status (the codes are NLopt's public enum values)
 STATUS_MAP: dict[int, Status] = {
@@ -110,6 +121,11 @@ class _NloptBase(AbstractSolver):
                     grad[:] = np.vstack([J, -J])
 
             opt.add_inequality_mconstraint(eq_as_ineq, [self.constraint_tol] * (2 * m_e))
+        if m_e > n and self.native_eq:
+            # answered before calling NLopt, whose SLSQP rejects it as an invalid argument
+            return SolverOutput(start_in_bounds(oracle), Status.FAILED,
+                                f"NLopt result -2 (INVALID_ARGS): more equality constraints than variables "
+                                f"({m_e} > n = {n})", extra={"native_status": int(nlopt.INVALID_ARGS)})
         self._configure(opt)
         opt.set_ftol_rel(self.ftol_rel)
         opt.set_xtol_rel(self.xtol_rel)
@@ -123,11 +139,17 @@ class _NloptBase(AbstractSolver):
             x, code = oracle.last_x, nlopt.ROUNDOFF_LIMITED
         except ProblemError:
             raise  # a bad problem definition is an error, not a solver failure
-        except (nlopt.ForcedStop, ValueError, RuntimeError) as exc:
-            # NLopt's generic failure / invalid-argument results. BudgetExhausted from
-            # the oracle is re-raised by NLopt's wrapper and handled by solve().
-            return SolverOutput(oracle.last_x, Status.FAILED, f"NLopt stopped: {type(exc).__name__}: {exc}",
+        except nlopt.ForcedStop as exc:
+            return SolverOutput(oracle.last_x, Status.FAILED, f"NLopt stopped: ForcedStop: {exc}",
                                 extra={"native_status": int(opt.last_optimize_result())})
+        except _NLOPT_FAILURES as exc:
+            # NLopt's failure results (module doc). BudgetExhausted from the oracle is re-raised
+            # by NLopt's wrapper as itself and handled by solve().
+            code = int(opt.last_optimize_result())
+            reason = (opt.get_errmsg() if hasattr(opt, "get_errmsg") else None) or str(exc) or type(exc).__name__
+            return SolverOutput(oracle.last_x, self.STATUS_MAP.get(code, Status.FAILED),
+                                f"NLopt result {code} ({_code_name(code)}): {reason}", nit=int(opt.get_numevals()),
+                                extra={"native_status": code})
         status = self.STATUS_MAP.get(int(code), Status.FAILED)
         return SolverOutput(np.asarray(x, dtype=float), status, f"NLopt result {code} ({_code_name(code)})",
                             nit=int(opt.get_numevals()), extra={"native_status": int(code)})

@@ -159,3 +159,33 @@ def test_slsqp_with_more_equalities_than_variables_fails_without_calling_scipy()
         assert r.nfg == 0
     r = solve(p, "scipy-trust-constr")  # the kind of run that aborted the process afterwards
     assert r.nfg > 0
+
+
+def test_nlopt_slsqp_more_equalities_than_variables_is_a_named_failure():
+    """Three equalities in two variables (S2MPJ HS25NE, LEWISPOL): NLopt's SLSQP rejects them as
+    an invalid argument; the adapter answers first, with the counts."""
+    p = Problem(name="overdetermined", x0=[0.5, 0.5], objective=lambda x: float(x @ x), gradient=lambda x: 2 * x,
+                eq=lambda x: np.array([x[0] - 1.0, x[1] - 1.0, x[0] - x[1]]),
+                eq_jacobian=lambda x: np.array([[1.0, 0.0], [0.0, 1.0], [1.0, -1.0]]))
+    r = solve(p, "nlopt-slsqp")
+    assert r.status is Status.FAILED and r.nfg == 0
+    assert "INVALID_ARGS" in r.message and "3 > n = 2" in r.message
+
+
+def test_nlopt_failure_result_is_recorded_with_nlopts_reason(monkeypatch):
+    """NLopt's wheels raise nlopt.runtime_error (not a Python RuntimeError) with an empty text
+    for its FAILURE result; the run is a failure whose message carries opt.get_errmsg()."""
+    import nlopt
+
+    if not hasattr(nlopt, "exception"):
+        pytest.skip("this NLopt build raises Python's own exceptions")
+
+    def optimize(self, x0):
+        raise nlopt.runtime_error("")
+
+    monkeypatch.setattr(nlopt.opt, "optimize", optimize)
+    monkeypatch.setattr(nlopt.opt, "last_optimize_result", lambda self: nlopt.FAILURE)
+    monkeypatch.setattr(nlopt.opt, "get_errmsg", lambda self: "bug: more than iter SQP iterations")
+    r = solve(problem("hs071"), "nlopt-slsqp")
+    assert r.status is Status.FAILED
+    assert r.message == "NLopt result -1 (FAILURE): bug: more than iter SQP iterations"
