@@ -17,7 +17,7 @@ from typing import Any, ClassVar
 import numpy as np
 from scipy import optimize
 
-from problems import Oracle
+from problems import Oracle, ProblemError
 
 from ._base import AbstractSolver, at_least, final, option, positive
 from ._result import SolverOutput, Status
@@ -125,6 +125,12 @@ class ScipyTrustConstr(AbstractSolver):
     maxiter: int = option(1000, "iteration cap", "SciPy default 1000", check=at_least(1))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
+        if oracle.n_eq > oracle.n:
+            # answered here: SciPy's equality-constrained SQP stops with a LinAlgError-like
+            # "expected square matrix" ValueError from its projections
+            return SolverOutput(start_in_bounds(oracle), Status.FAILED,
+                                f"trust-constr: more equality constraints than variables ({oracle.n_eq} > "
+                                f"n = {oracle.n}; checked before calling SciPy)")
         cons = []
         if oracle.n_ineq:
             cons.append(optimize.NonlinearConstraint(oracle.ineq, -np.inf, 0.0, jac=oracle.ineq_jac,
@@ -133,10 +139,20 @@ class ScipyTrustConstr(AbstractSolver):
             cons.append(optimize.NonlinearConstraint(oracle.eq, 0.0, 0.0, jac=oracle.eq_jac, hess=optimize.BFGS()))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # delta_grad == 0 / singular Jacobian notes from SciPy
-            res = optimize.minimize(oracle.f_and_grad, start_in_bounds(oracle), jac=True, hess=optimize.BFGS(),
-                                    method="trust-constr", bounds=_bounds(oracle), constraints=cons,
-                                    options={"gtol": self.gtol, "xtol": self.xtol, "maxiter": self.maxiter,
-                                             "verbose": 0})
+            try:
+                res = optimize.minimize(oracle.f_and_grad, start_in_bounds(oracle), jac=True, hess=optimize.BFGS(),
+                                        method="trust-constr", bounds=_bounds(oracle), constraints=cons,
+                                        options={"gtol": self.gtol, "xtol": self.xtol, "maxiter": self.maxiter,
+                                                 "verbose": 0})
+            except ProblemError:
+                raise  # a bad problem definition is an error, not a solver failure
+            except ValueError as exc:
+                if "infs or NaNs" not in str(exc):
+                    raise
+                # SciPy's linear algebra met a non-finite f, gradient or constraint value at a trial
+                # point and cannot go on (S2MPJ HS101, HS103, HS112, HIMMELBJ, WATER)
+                return SolverOutput(oracle.last_x, Status.FAILED, "trust-constr stopped: a non-finite f, gradient "
+                                    f"or constraint value at a trial point (SciPy: {exc})")
         status = self.STATUS_MAP.get(int(res.status), Status.FAILED)
         return SolverOutput(res.x, status, f"trust-constr status {res.status}: {res.message}",
                             nit=int(res.get("nit", 0)), extra={"native_status": int(res.status)})

@@ -189,3 +189,27 @@ def test_nlopt_failure_result_is_recorded_with_nlopts_reason(monkeypatch):
     r = solve(problem("hs071"), "nlopt-slsqp")
     assert r.status is Status.FAILED
     assert r.message == "NLopt result -1 (FAILURE): bug: more than iter SQP iterations"
+
+
+def test_trust_constr_more_equalities_than_variables_is_a_named_failure():
+    p = Problem(name="overdetermined", x0=[0.5, 0.5], objective=lambda x: float(x @ x), gradient=lambda x: 2 * x,
+                eq=lambda x: np.array([x[0] - 1.0, x[1] - 1.0, x[0] - x[1]]),
+                eq_jacobian=lambda x: np.array([[1.0, 0.0], [0.0, 1.0], [1.0, -1.0]]))
+    r = solve(p, "scipy-trust-constr")
+    assert r.status is Status.FAILED and r.nfg == 0 and "3 > n = 2" in r.message
+
+
+def test_trust_constr_non_finite_values_end_the_run_with_a_clear_message():
+    """A constraint that is NaN beyond x1 = 1.5 (as S2MPJ HS101 outside its domain): SciPy's
+    linear algebra raises 'array must not contain infs or NaNs'; the run names the cause."""
+    def g(x):
+        return np.array([x[0] + x[1] - 10.0]) if x[0] < 1.5 else np.array([np.nan])
+
+    def jac(x):
+        return np.array([[1.0, 1.0]]) if x[0] < 1.5 else np.full((1, 2), np.nan)
+
+    p = Problem(name="nan-beyond", x0=[1.0, 0.0], objective=lambda x: float(-x[0] + x[1] ** 2),
+                gradient=lambda x: np.array([-1.0, 2 * x[1]]), ineq=g, ineq_jacobian=jac)
+    r = solve(p, "scipy-trust-constr")
+    assert not r.success
+    assert "trust-constr stopped: a non-finite f, gradient or constraint value" in r.message
