@@ -31,7 +31,7 @@ from problems import Oracle, ProblemError
 
 from ._base import AbstractSolver, at_least, between, final, nonneg, option
 from ._result import SolverOutput, Status
-from .scipy_constrained import start_in_bounds
+from ._start import start_in_bounds
 
 __all__ = ["NloptMMA", "NloptSLSQP", "STATUS_MAP"]
 

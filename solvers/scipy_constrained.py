@@ -21,18 +21,9 @@ from problems import Oracle, ProblemError
 
 from ._base import AbstractSolver, at_least, final, option, positive
 from ._result import SolverOutput, Status
+from ._start import start_in_bounds
 
 __all__ = ["ScipySLSQP", "ScipyTrustConstr", "ScipyCOBYLA", "start_in_bounds"]
-
-
-def start_in_bounds(oracle: Oracle) -> np.ndarray:
-    """x0 projected onto the simple bounds.
-
-    SciPy's SLSQP and NLopt clip x0 themselves, but SLSQP first evaluates the
-    constraints at the *unclipped* x0 (to count them), which would cost one extra,
-    meaningless N^fg; projecting first avoids it and treats every adapter alike.
-    """
-    return np.clip(oracle.x0, oracle.lower, oracle.upper)
 
 
 def _bounds(oracle: Oracle) -> optimize.Bounds | None:
