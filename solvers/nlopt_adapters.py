@@ -31,7 +31,7 @@ from problems import Oracle, ProblemError
 
 from ._base import AbstractSolver, at_least, between, final, nonneg, option
 from ._result import SolverOutput, Status
-from ._start import start_in_bounds
+from ._start import more_equalities_than_variables, start_in_bounds
 
 __all__ = ["NloptMMA", "NloptSLSQP", "STATUS_MAP"]
 
@@ -121,11 +121,12 @@ class _NloptBase(AbstractSolver):
                     grad[:] = np.vstack([J, -J])
 
             opt.add_inequality_mconstraint(eq_as_ineq, [self.constraint_tol] * (2 * m_e))
-        if m_e > n and self.native_eq:
-            # answered before calling NLopt, whose SLSQP rejects it as an invalid argument
-            return SolverOutput(start_in_bounds(oracle), Status.FAILED,
-                                f"NLopt result -2 (INVALID_ARGS): more equality constraints than variables "
-                                f"({m_e} > n = {n})", extra={"native_status": int(nlopt.INVALID_ARGS)})
+        if self.native_eq:
+            over = more_equalities_than_variables(oracle, "NLopt result -2 (INVALID_ARGS)",
+                                                  "its SLSQP rejects it with an empty invalid_argument",
+                                                  native_status=int(nlopt.INVALID_ARGS))
+            if over is not None:
+                return over
         self._configure(opt)
         opt.set_ftol_rel(self.ftol_rel)
         opt.set_xtol_rel(self.xtol_rel)

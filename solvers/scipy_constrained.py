@@ -21,7 +21,7 @@ from problems import Oracle, ProblemError
 
 from ._base import AbstractSolver, at_least, final, option, positive
 from ._result import SolverOutput, Status
-from ._start import start_in_bounds
+from ._start import more_equalities_than_variables, start_in_bounds
 
 __all__ = ["ScipySLSQP", "ScipyTrustConstr", "ScipyCOBYLA", "start_in_bounds"]
 
@@ -64,14 +64,11 @@ class ScipySLSQP(AbstractSolver):
     maxiter: int = option(500, "iteration cap (SLSQP major iterations)", "SciPy default 100", check=at_least(1))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
-        if oracle.n_eq > oracle.n:
-            # SLSQP's mode 2, answered here: with inequality constraints present SciPy's SLSQP first
-            # writes past its workspace and corrupts the process's heap (scipy/scipy#25665; seen with
-            # SciPy 1.17.1 on hs-all's HS25NE, which later crashed another solver in the same process)
-            return SolverOutput(start_in_bounds(oracle), Status.FAILED,
-                                "SLSQP mode 2: More equality constraints than independent variables "
-                                f"({oracle.n_eq} > n = {oracle.n}; checked before calling SciPy, scipy/scipy#25665)",
-                                extra={"native_status": 2})
+        over = more_equalities_than_variables(
+            oracle, "SLSQP mode 2", "with inequality constraints present SciPy's SLSQP writes past its workspace "
+            "and corrupts the process's heap, scipy/scipy#25665", native_status=2)
+        if over is not None:
+            return over
         cons: list[dict[str, Any]] = []
         if oracle.n_ineq:
             cons.append({"type": "ineq", "fun": lambda x: -oracle.ineq(x), "jac": lambda x: -oracle.ineq_jac(x)})
@@ -116,12 +113,10 @@ class ScipyTrustConstr(AbstractSolver):
     maxiter: int = option(1000, "iteration cap", "SciPy default 1000", check=at_least(1))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
-        if oracle.n_eq > oracle.n:
-            # answered here: SciPy's equality-constrained SQP stops with a LinAlgError-like
-            # "expected square matrix" ValueError from its projections
-            return SolverOutput(start_in_bounds(oracle), Status.FAILED,
-                                f"trust-constr: more equality constraints than variables ({oracle.n_eq} > "
-                                f"n = {oracle.n}; checked before calling SciPy)")
+        over = more_equalities_than_variables(
+            oracle, "trust-constr", "its projections would raise SciPy's bare 'expected square matrix' ValueError")
+        if over is not None:
+            return over
         cons = []
         if oracle.n_ineq:
             cons.append(optimize.NonlinearConstraint(oracle.ineq, -np.inf, 0.0, jac=oracle.ineq_jac,
