@@ -213,3 +213,24 @@ def test_trust_constr_non_finite_values_end_the_run_with_a_clear_message():
     r = solve(p, "scipy-trust-constr")
     assert not r.success
     assert "trust-constr stopped: a non-finite f, gradient or constraint value" in r.message
+
+
+def test_more_equalities_than_variables_helper():
+    """One helper answers m_eq > n for the three SQP adapters: None when the problem is not
+    over-determined, else a failed run at the start point (clipped to the bounds) with the
+    library's verdict, the counts and the reason."""
+    from problems import Oracle
+    from solvers._start import more_equalities_than_variables
+
+    square = Problem(name="square", x0=[0.5, 0.5], objective=lambda x: float(x @ x), gradient=lambda x: 2 * x,
+                     eq=lambda x: x - 1.0, eq_jacobian=lambda x: np.eye(2))
+    assert more_equalities_than_variables(Oracle(square), "native", "why") is None
+    over = Problem(name="over", x0=[5.0, 0.5], objective=lambda x: float(x @ x), gradient=lambda x: 2 * x,
+                   eq=lambda x: np.array([x[0] - 1.0, x[1] - 1.0, x[0] - x[1]]),
+                   eq_jacobian=lambda x: np.array([[1.0, 0.0], [0.0, 1.0], [1.0, -1.0]]),
+                   lower=[-1.0, -1.0], upper=[2.0, 2.0])
+    out = more_equalities_than_variables(Oracle(over), "LIB verdict", "the reason", native_status=7)
+    assert out is not None and out.status is Status.FAILED
+    assert out.message == ("LIB verdict: more equality constraints than variables (3 > n = 2; "
+                           "answered before calling the library: the reason)")
+    assert np.array_equal(out.x, [2.0, 0.5]) and out.extra == {"native_status": 7}
