@@ -26,6 +26,8 @@ import numpy as np
 
 __all__ = ["ElasticQPResult", "l1_model", "linearized_violations", "solve_elastic_qp"]
 
+_sum = np.add.reduce  # ndarray.sum's reduction without its Python-level wrapper (the same floats)
+
 
 @dataclass(slots=True)
 class ElasticQPResult:
@@ -43,8 +45,8 @@ class ElasticQPResult:
 def linearized_violations(d, g0, Jg, h0, Jh) -> tuple[float, float]:
     """(sum max(g + Jg d, 0), sum |h + Jh d|): the l1 infeasibility of the linearized
     inequality and equality constraints at step d."""
-    return (float(np.maximum(g0 + Jg @ d, 0.0).sum()) if g0.size else 0.0,
-            float(np.abs(h0 + Jh @ d).sum()) if h0.size else 0.0)
+    return (float(_sum(np.maximum(g0 + Jg @ d, 0.0), axis=None)) if g0.size else 0.0,
+            float(_sum(np.abs(h0 + Jh @ d), axis=None)) if h0.size else 0.0)
 
 
 def l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu) -> float:
@@ -60,7 +62,8 @@ def l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu) -> float:
 
 def _hess_times(sigma, d: np.ndarray) -> np.ndarray:
     """The model Hessian (scalar, diagonal of shape (n,), or full matrix (n, n)) times d."""
-    sigma = np.asarray(sigma, dtype=float)
+    if type(sigma) is not np.ndarray:  # a float, or a list; an array is used as it is (one call fewer)
+        sigma = np.asarray(sigma, dtype=float)
     return sigma @ d if sigma.ndim == 2 else sigma * d
 
 
@@ -120,17 +123,17 @@ def _csc(dense: np.ndarray) -> _CscView:
     return _CscView(dense.shape, np.ascontiguousarray(dense.T[cols, rows]), rows.astype(np.int64), indptr)
 
 
-def _pattern_csc(shape: tuple[int, int], vals: np.ndarray, rows: np.ndarray, cols: np.ndarray,
-                 indptr: np.ndarray) -> _CscView:
-    """CSC arrays of a matrix given by a fixed pattern (``rows``, ``cols`` in CSC order, its
+def _pattern_csc(shape: tuple[int, int], vals: np.ndarray, rows: np.ndarray, indptr: np.ndarray) -> _CscView:
+    """CSC arrays of a matrix given by a fixed pattern (row indices ``rows`` in CSC order, its
     column pointers ``indptr``) and this call's values: the same arrays as ``_csc`` of the
-    dense matrix, i.e. exact zeros dropped (only then is the column count recomputed)."""
+    dense matrix, i.e. exact zeros dropped (only then are the column pointers recomputed)."""
     if np.count_nonzero(vals) == vals.size:  # the usual case: a quasi-Newton matrix and most Jacobians are dense
         return _CscView(shape, vals, rows, indptr)
     keep = vals != 0.0
-    indptr = np.zeros(shape[1] + 1, dtype=np.int64)
-    np.cumsum(np.bincount(cols[keep], minlength=shape[1]), out=indptr[1:])
-    return _CscView(shape, vals[keep], rows[keep], indptr)
+    # the new column pointers are the running count of kept entries at the old ones
+    kept = np.zeros(vals.size + 1, dtype=np.int64)
+    np.add.accumulate(keep, dtype=np.int64, out=kept[1:])  # np.cumsum's ufunc, without its wrapper
+    return _CscView(shape, vals[keep], rows[keep], kept[indptr])
 
 
 def _pattern_of(dense: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -140,17 +143,17 @@ def _pattern_of(dense: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 @functools.cache
-def _hessian_pattern(n: int, nv: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _hessian_pattern(n: int, nv: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pattern of the upper triangle of the n x n Hessian block of the nv x nv matrix P, and
     the flat indices of its entries in the n x n Hessian."""
     block = np.zeros((nv, nv))
     block[:n, :n] = np.triu(np.ones((n, n)))
     rows, cols, indptr = _pattern_of(block)
-    return rows, cols, indptr, rows * n + cols
+    return rows, indptr, rows * n + cols
 
 
 @functools.cache
-def _constraint_pattern(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _constraint_pattern(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pattern of the constraint matrix of `solve_elastic_qp` with dense Jacobians, and the
     values of its fixed +-1 entries (NaN where this call's Jacobian entries go).
 
@@ -162,25 +165,26 @@ def _constraint_pattern(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray,
     r, c, v = _identity_blocks(n, p, q)
     A[r, c] = v
     rows, cols, indptr = _pattern_of(A)
-    return rows, cols, indptr, A.T[cols, rows]
+    return rows, indptr, A.T[cols, rows]
 
 
 def _hessian_csc(sig: np.ndarray, n: int, nv: int) -> _CscView:
     """The upper triangle of the n x n model Hessian in the top-left of the nv x nv matrix P,
     in CSC form: the same arrays as ``_csc`` of that dense embedding."""
-    rows, cols, indptr, flat = _hessian_pattern(n, nv)
-    return _pattern_csc((nv, nv), sig.take(flat), rows, cols, indptr)
+    rows, indptr, flat = _hessian_pattern(n, nv)
+    return _pattern_csc((nv, nv), sig.take(flat), rows, indptr)
 
 
 def _constraint_csc(Jg: np.ndarray, Jh: np.ndarray, n: int, p: int, q: int) -> _CscView:
     """The constraint matrix of `solve_elastic_qp` in CSC form: the same arrays as ``_csc``
     of its dense assembly, from the cached pattern."""
-    rows, cols, indptr, fixed = _constraint_pattern(n, p, q)
+    rows, indptr, fixed = _constraint_pattern(n, p, q)
     vals = fixed.copy()
     # in column j < n the first q + p entries are Jh[:, j] then Jg[:, j], then the two box entries
-    vals[:n * (q + p + 2)].reshape(n, q + p + 2)[:, :q + p] = np.concatenate((Jh, Jg)).T
+    vals[:n * (q + p + 2)].reshape(n, q + p + 2)[:, :q + p] = (Jg if not q else Jh if not p
+                                                              else np.concatenate((Jh, Jg))).T
     ne = p + 2 * q
-    return _pattern_csc((q + p + ne + 2 * n, n + ne), vals, rows, cols, indptr)
+    return _pattern_csc((q + p + ne + 2 * n, n + ne), vals, rows, indptr)
 
 
 def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
@@ -218,7 +222,7 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     d = np.minimum(np.maximum(v[:n], d_lo), d_up) if ok else np.zeros(n)  # np.clip, without its wrapper
     nu = z[:q].copy() if ok else np.zeros(q)
     lam = np.maximum(z[q:q + p], 0.0) if ok else np.zeros(p)
-    elastic = float(v[n:].sum()) if ok else 0.0
+    elastic = float(_sum(v[n:], axis=None)) if ok else 0.0
     model = l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu)
     return ElasticQPResult(d, lam, nu, elastic, model, ok, status)
 

@@ -40,6 +40,15 @@ __all__ = ["DynamicQPlus"]
 CURVATURES = ("bfgs", "diagonal", "spherical")
 MU_MAX = 1e10
 COND_MAX = 1e4  # largest ratio of the diagonal curvatures
+# the ufunc reductions behind ndarray.max / .sum / .all, called without those methods' Python-level
+# wrappers (the same reductions, so the same floats; these run several times per iteration)
+_max, _sum, _all = np.maximum.reduce, np.add.reduce, np.logical_and.reduce
+_isfinite = np.isfinite
+
+
+def _clip(v: float, lo: float, hi: float) -> float:
+    """float(np.clip(v, lo, hi)) for one number (NaN stays NaN), without NumPy's call overhead."""
+    return float(min(max(v, lo), hi))
 
 
 def _finite(ev: dict[str, Any]) -> bool:
@@ -47,14 +56,15 @@ def _finite(ev: dict[str, Any]) -> bool:
         return False
     for k in ("g", "ineq", "ineq_jac", "eq", "eq_jac"):  # a loop, not a generator: this runs at every point
         a = ev[k]
-        if a.size and not np.isfinite(a).all():
+        if a.size and not _all(_isfinite(a), axis=None):
             return False
     return True
 
 
 def _violation(ev: dict[str, Any]) -> float:
     g, h = ev["ineq"], ev["eq"]
-    return max(float(g.max(initial=0.0)) if g.size else 0.0, float(np.abs(h).max()) if h.size else 0.0)
+    return max(float(_max(g, axis=None, initial=0.0)) if g.size else 0.0,
+               float(_max(np.abs(h), axis=None)) if h.size else 0.0)
 
 
 def _l1_infeas(ev: dict[str, Any]) -> float:
@@ -62,10 +72,10 @@ def _l1_infeas(ev: dict[str, Any]) -> float:
     # much as on a short one (adding the empty block's 0.0 to a sum >= 0 changes nothing)
     g, h = ev["ineq"], ev["eq"]
     if not h.size:
-        return float(np.maximum(g, 0.0).sum()) if g.size else 0.0
+        return float(_sum(np.maximum(g, 0.0), axis=None)) if g.size else 0.0
     if not g.size:
-        return float(np.abs(h).sum())
-    return float(np.maximum(g, 0.0).sum() + np.abs(h).sum())
+        return float(_sum(np.abs(h), axis=None))
+    return float(_sum(np.maximum(g, 0.0), axis=None) + _sum(np.abs(h), axis=None))
 
 
 def _lagrangian_gradient_change(ev_old: dict[str, Any], ev_new: dict[str, Any], lam: np.ndarray,
@@ -229,11 +239,11 @@ class DynamicQPlus(AbstractSolver):
         y = _lagrangian_gradient_change(ev_old, ev_new, lam, nu)
         B_in = B
         if first:
-            B = float(np.clip(s_sph, self.sigma_min, self.sigma_max)) * np.eye(dx.size)
+            B = _clip(s_sph, self.sigma_min, self.sigma_max) * np.eye(dx.size)
         Bs = B @ dx
         sBs = float(dx @ Bs)
         sy = float(dx @ y)
-        if not (sBs > 0.0 and np.isfinite(y).all()):
+        if not (sBs > 0.0 and _all(_isfinite(y), axis=None)):
             return B
         theta = 1.0 if sy >= 0.2 * sBs else 0.8 * sBs / (sBs - sy)
         r = theta * y + (1.0 - theta) * Bs
@@ -252,7 +262,7 @@ class DynamicQPlus(AbstractSolver):
         # safeguard: eigenvalues within [sigma_min, sigma_max] (B stays positive definite)
         if self._inside_bounds(Bn):
             return Bn
-        if not np.isfinite(Bn).all():  # [OWN] overflow in the outer products (CUTEst GAUSS2LS): no update
+        if not _all(_isfinite(Bn), axis=None):  # [OWN] overflow in the outer products (CUTEst GAUSS2LS): no update
             return B_in
         w, V = np.linalg.eigh(Bn)
         if w[0] < self.sigma_min or w[-1] > self.sigma_max:
@@ -316,7 +326,7 @@ class DynamicQPlus(AbstractSolver):
 
     def _spherical_restart(self, s_last: float, n: int) -> np.ndarray:
         """sigma I with sigma the spherical curvature of eq. (3.6) along the last step, safeguarded."""
-        return float(np.clip(s_last, self.sigma_min, self.sigma_max)) * np.eye(n)
+        return _clip(s_last, self.sigma_min, self.sigma_max) * np.eye(n)
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
         """[OWN] Variable scaling, then the iteration (`_minimize`).
@@ -383,8 +393,8 @@ class DynamicQPlus(AbstractSolver):
                                         extra=self._extra(log, n_rej))
                 continue
             # largest multiplier (lam >= 0 already); empty blocks skipped
-            mult = max(float(res.lam.max()) if res.lam.size else 0.0,
-                       float(np.abs(res.nu).max()) if res.nu.size else 0.0)
+            mult = max(float(_max(res.lam, axis=None)) if res.lam.size else 0.0,
+                       float(_max(np.abs(res.nu), axis=None)) if res.nu.size else 0.0)
             if mult > 0.5 * mu and res.elastic <= self.eps_c:
                 # [OWN] the exact-penalty weight must exceed the multipliers.  Not raised while the
                 # slacks are in use: then the multipliers sit at mu because the move limit cuts the
@@ -423,8 +433,8 @@ class DynamicQPlus(AbstractSolver):
             viol = ev["viol"]
             phi = ev["f"] + mu * ev["l1"]
             pred = mu * ev["l1"] - res.model  # model reduction of phi
-            dn = float(np.abs(d).max(initial=0.0))
-            xs = 1.0 + float(np.abs(x).max(initial=0.0))
+            dn = float(_max(np.abs(d), axis=None, initial=0.0))
+            xs = 1.0 + float(_max(np.abs(x), axis=None, initial=0.0))
             if viol <= self.eps_c and (dn / xs < self.eps_x or pred / (1.0 + abs(ev["f"])) < self.eps_f):
                 if self._restart_before_stop(restarted, n_upd):
                     sigma, restarted = self._spherical_restart(s_last, oracle.n), True
@@ -444,7 +454,7 @@ class DynamicQPlus(AbstractSolver):
             phit = evt["f"] + mu * evt["l1"] if ok else math.inf
             # non-monotone ratio (against the worst of the last few accepted merits) so that a
             # step along a curved constraint is not rejected by the l1 merit (Maratos effect)
-            phi_ref = max(phi, max(e["f"] + mu * e["l1"] for e in recent))
+            phi_ref = max(phi, max([e["f"] + mu * e["l1"] for e in recent]))
             ratio = (phi_ref - phit) / pred
             n_soc_step = 0
             if (self.second_order_correction and ok and ratio < self.eta and evt["l1"] > ev["l1"]):
@@ -453,7 +463,7 @@ class DynamicQPlus(AbstractSolver):
                 # where the l1 merit rejected the plain one (Maratos effect; HS27, HS47).  One more point.
                 rs = solve_elastic_qp(ev["g"], sigma, evt["ineq"] - ev["ineq_jac"] @ d, ev["ineq_jac"],
                                       evt["eq"] - ev["eq_jac"] @ d, ev["eq_jac"], d_lo, d_up, mu)
-                if rs.ok and float(np.abs(rs.d).max(initial=0.0)) > 0.0:
+                if rs.ok and float(_max(np.abs(rs.d), axis=None, initial=0.0)) > 0.0:
                     xc = np.minimum(np.maximum(x + rs.d, lo), up)
                     evc = scaled(oracle.evaluate(xc))
                     if _finite(evc):
