@@ -31,7 +31,7 @@ from scipy.linalg.lapack import dpotrf
 from problems import Oracle
 
 from ._base import AbstractSolver, final, option
-from ._qp_subproblem import l1_model, linearized_violations, solve_elastic_qp
+from ._qp_subproblem import _sum, l1_model, linearized_violations, solve_elastic_qp
 from ._result import SolverOutput, Status
 from ._spherical import two_point_curvature
 
@@ -40,9 +40,10 @@ __all__ = ["DynamicQPlus"]
 CURVATURES = ("bfgs", "diagonal", "spherical")
 MU_MAX = 1e10
 COND_MAX = 1e4  # largest ratio of the diagonal curvatures
-# the ufunc reductions behind ndarray.max / .sum / .all, called without those methods' Python-level
-# wrappers (the same reductions, so the same floats; these run several times per iteration)
-_max, _sum, _all = np.maximum.reduce, np.add.reduce, np.logical_and.reduce
+# the ufunc reductions behind ndarray.max / .all (and .sum, `_qp_subproblem._sum`), called without
+# those methods' Python-level wrappers (the same reductions, so the same floats; these run several
+# times per iteration)
+_max, _all = np.maximum.reduce, np.logical_and.reduce
 _isfinite = np.isfinite
 
 

@@ -81,6 +81,12 @@ class _NloptBase(AbstractSolver):
                             check=nonneg(finite=True))
 
     def minimize(self, oracle: Oracle) -> SolverOutput:
+        if self.native_eq:  # answered before any NLopt object is built
+            over = more_equalities_than_variables(oracle, "NLopt result -2 (INVALID_ARGS)",
+                                                  "its SLSQP rejects it with an empty invalid_argument",
+                                                  native_status=int(nlopt.INVALID_ARGS))
+            if over is not None:
+                return over
         n = oracle.n
         opt = nlopt.opt(self.algorithm, n)
 
@@ -121,12 +127,6 @@ class _NloptBase(AbstractSolver):
                     grad[:] = np.vstack([J, -J])
 
             opt.add_inequality_mconstraint(eq_as_ineq, [self.constraint_tol] * (2 * m_e))
-        if self.native_eq:
-            over = more_equalities_than_variables(oracle, "NLopt result -2 (INVALID_ARGS)",
-                                                  "its SLSQP rejects it with an empty invalid_argument",
-                                                  native_status=int(nlopt.INVALID_ARGS))
-            if over is not None:
-                return over
         self._configure(opt)
         opt.set_ftol_rel(self.ftol_rel)
         opt.set_xtol_rel(self.xtol_rel)
