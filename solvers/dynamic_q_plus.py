@@ -147,7 +147,9 @@ class DynamicQPlus(AbstractSolver):
     eps_c: float = option(1e-7, "feasibility: every constraint violation <= eps_c", "[OWN]")
     eta: float = option(0.1, "accept a step when actual / predicted merit reduction >= eta", "[OWN] trust region")
     shrink: float = option(0.3, "on rejection rho = shrink * ||d||_inf", "[OWN] trust region")
-    sigma_min: float = option(1e-8, "lower safeguard on the spherical curvature", "[OWN]")
+    sigma_min: float = option(1e-12, "lower safeguard on the curvatures (eigenvalues of the BFGS matrix, of the "
+                              "scaled problem); small, because ill-conditioned least squares have curvatures "
+                              "near 1e-11 that a larger floor overestimates (docs/thesis_solvers.md)", "[OWN]")
     sigma_max: float = option(1e8, "upper safeguard on the spherical curvature", "[OWN]")
     curvature: str = option("bfgs", "'bfgs': Powell-damped BFGS matrix of the Lagrangian started from "
                             "eq. (3.6)'s spherical curvature; 'diagonal': per-variable curvatures of the "
@@ -174,7 +176,8 @@ class DynamicQPlus(AbstractSolver):
     scale_spread: float = option(100.0, "work in y = x / s, s_i = max(1, |x0_i|), when the largest s_i is over this "
                                  "many times the smallest (variables of different orders of magnitude); "
                                  "inf: never, 1: always", "[OWN]")
-    max_iter: int = option(200, "maximum number of oracle points (iterations incl. rejected trials)", "[OWN]")
+    max_iter: int = option(1000, "maximum number of oracle points (iterations incl. rejected trials); the "
+                           "field's caps are of this order (trust-constr 1000 iterations, Ipopt 3000)", "[OWN]")
 
     def check_together(self) -> None:  # called by AbstractSolver.__post_init__ after the per-option checks
         for k in ("rho", "sigma_min", "sigma_max", "mu0"):
