@@ -67,21 +67,45 @@ def sampling_box(x0: np.ndarray, lower: np.ndarray, upper: np.ndarray, spread: f
     return lo, np.maximum(hi, lo)
 
 
+#: the oracle's methods that take a point (every evaluation passes through one of them)
+_EVALUATIONS = frozenset({"f", "grad", "f_and_grad", "ineq", "eq", "ineq_jac", "eq_jac", "at", "evaluate"})
+
+
+class _OutOfTime(BudgetExhausted):
+    """A local run asked for a point after the search's hard stop (the run's deadline less the margin).
+
+    A `BudgetExhausted`, so that every adapter passes it through as it does an evaluation budget.
+    """
+
+
 class _StartedAt:
     """The oracle seen by one local run: the same counting oracle, with ``x0`` the run's start.
 
     Every other attribute is the wrapped oracle's, so counts, history and caching are shared.
+    With ``stop_at`` (a `time.time` instant), asking for a point after it raises `_OutOfTime`:
+    the search then returns its best end so far instead of being killed at the harness's limit
+    with nothing (the prediction in `Multistart.minimize` is a guess; this is the guarantee).
     """
 
-    def __init__(self, oracle: Oracle, x0: np.ndarray) -> None:
-        self._oracle, self._x0 = oracle, x0
+    def __init__(self, oracle: Oracle, x0: np.ndarray, stop_at: float | None = None) -> None:
+        self._oracle, self._x0, self._stop_at = oracle, x0, stop_at
 
     @property
     def x0(self) -> np.ndarray:
         return self._x0.copy()
 
     def __getattr__(self, name: str) -> Any:
-        return getattr(self._oracle, name)
+        attr = getattr(self._oracle, name)
+        stop_at = self._stop_at
+        if stop_at is None or name not in _EVALUATIONS:
+            return attr
+
+        def checked(*args: Any, **kwargs: Any) -> Any:
+            if time.time() > stop_at:
+                raise _OutOfTime("the run's deadline is near: local run stopped")
+            return attr(*args, **kwargs)
+
+        return checked
 
 
 @dataclasses.dataclass(frozen=True)
@@ -149,10 +173,10 @@ class Multistart(AbstractSolver):
         return self.local.can_solve(problem)
 
     # ------------------------------------------------------------------ helpers
-    def _run(self, oracle: Oracle, start: np.ndarray) -> _End:
+    def _run(self, oracle: Oracle, start: np.ndarray, stop_at: float | None = None) -> _End:
         """One local run from ``start``, and f and the violation at its end (through the oracle)."""
         try:
-            out = self.local.minimize(_StartedAt(oracle, start))  # type: ignore[arg-type]  # an Oracle view
+            out = self.local.minimize(_StartedAt(oracle, start, stop_at))  # type: ignore[arg-type]  # a view
             x = np.clip(np.asarray(out.x, dtype=float).reshape(-1), oracle.lower, oracle.upper)
             status, message = Status(out.status), out.message
         except BudgetExhausted:
@@ -184,13 +208,17 @@ class Multistart(AbstractSolver):
         lo, hi = sampling_box(np.clip(x0, oracle.lower, oracle.upper), oracle.lower, oracle.upper, self.spread)
         rng = np.random.default_rng(self.seed)
         deadline, longest = run_deadline(), 0.0
+        stop_at = None if deadline is None else deadline - DEADLINE_MARGIN
         ends: list[_End] = []
         q, stop = 0.0, "max_starts"
         for k in range(self.max_starts):
             start = x0 if k == 0 else rng.uniform(lo, hi)
             t_run = time.perf_counter()
             try:
-                ends.append(self._run(oracle, start))
+                ends.append(self._run(oracle, start, stop_at))
+            except _OutOfTime:  # the unfinished local run is dropped; the ends so far stand
+                stop = "deadline"
+                break
             except BudgetExhausted:
                 stop = "budget"
                 break
@@ -227,8 +255,8 @@ class Multistart(AbstractSolver):
                                  f"stopped by {stop}"))
             return SolverOutput(best.x, status, msg, nit=len(ends), extra=extra)
         if not ends:
-            return SolverOutput(oracle.last_x, Status.MAX_ITER, "evaluation budget exhausted in the first local run",
-                                nit=0, extra=extra)
+            why = "the run's deadline reached" if stop == "deadline" else "evaluation budget exhausted"
+            return SolverOutput(oracle.last_x, Status.MAX_ITER, f"{why} in the first local run", nit=0, extra=extra)
         feasible = [e for e in ends if e.violation <= self.feas_tol]
         if feasible:  # e.g. every local run stopped on its cap: the lowest feasible end, uncertified
             best = min(feasible, key=lambda e: e.f)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 
@@ -11,7 +12,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from problems import Problem, ProblemError
-from solvers import NotApplicable, Status, make_solver, solve
+from solvers import AbstractSolver, NotApplicable, SolverOutput, Status, make_solver, solve
 from solvers._deadline import DEADLINE_ENV, run_deadline, set_run_deadline
 from solvers.multistart import Multistart, bayes_confidence, sampling_box
 
@@ -142,11 +143,52 @@ def test_applies_where_the_local_solver_applies():
 
 
 def test_stops_in_time_for_the_harness_deadline(monkeypatch):
-    monkeypatch.setenv(DEADLINE_ENV, repr(time.time() + 0.1))  # less than the margin: one run only
+    monkeypatch.setenv(DEADLINE_ENV, repr(time.time() + 0.1))  # inside the margin: no point may be asked for
     r = solve(double_well(), "multistart")
-    assert r.status is Status.MAX_ITER and r.extra["stopped_by"] == "deadline" and r.nit == 1
+    assert r.status is Status.MAX_ITER and r.extra["stopped_by"] == "deadline" and r.nit == 0
+    assert "deadline" in r.message and r.nfg == 0
     monkeypatch.setenv(DEADLINE_ENV, repr(time.time() + 3600))
     assert solve(double_well(), "multistart").extra["stopped_by"] == "confidence"
+
+
+@dataclasses.dataclass(frozen=True)
+class _WalksForever(AbstractSolver):
+    """Converges at once from x0 on its first run; from any other start it never stops evaluating."""
+
+    name = "test-walks-forever"
+    summary = "test double"
+    handles = frozenset({"bounds"})
+
+    def minimize(self, oracle):
+        x = np.asarray(oracle.x0, dtype=float)
+        if x[0] == 0.5:  # the problem's own x0: the first local run
+            return SolverOutput(x, Status.CONVERGED, "stopped at x0")
+        while True:
+            x = x + 1e-9
+            oracle.f(x)
+
+
+def test_a_local_run_that_would_overrun_the_deadline_is_stopped_and_the_ends_kept(monkeypatch):
+    monkeypatch.setenv(DEADLINE_ENV, repr(time.time() + 1.0))  # 0.5 s of search after the margin
+    t0 = time.perf_counter()
+    r = solve(double_well(), Multistart(local=_WalksForever()))
+    assert time.perf_counter() - t0 < 1.0  # stopped before the deadline, not killed at it
+    assert r.extra["stopped_by"] == "deadline" and r.nit == 1 and r.status is Status.MAX_ITER
+    assert r.x[0] == 0.5 and r.nfg > 1  # the first run's end is returned; the second's points were counted
+
+
+def test_the_local_runs_view_stops_only_point_requests(monkeypatch):
+    from problems import BudgetExhausted, Oracle
+    from solvers.multistart import _StartedAt
+
+    oracle = Oracle(double_well())
+    late = _StartedAt(oracle, np.array([2.0]), stop_at=time.time() - 1.0)
+    assert late.n == 1 and late.x0[0] == 2.0 and late.nfg == 0  # attributes still answer
+    for call in (lambda: late.f([1.0]), lambda: late.evaluate([1.0]), lambda: late.at([1.0]).f()):
+        with pytest.raises(BudgetExhausted, match="deadline"):
+            call()
+    assert oracle.nfg == 0
+    assert _StartedAt(oracle, np.array([2.0]), stop_at=time.time() + 60).f([1.0]) == oracle.f([1.0])
 
 
 def test_run_deadline_set_and_cleared(monkeypatch):
