@@ -109,7 +109,7 @@ class _ScaledVariables:
 
     def __init__(self, oracle: Oracle, s: np.ndarray) -> None:
         self._o, self._s = oracle, s
-        self.variable_scale = s  # read by the stopping test, which measures steps in x
+        self.variable_scale = s  # read by the step test, which measures a step in x as well as in y
         self.lower, self.upper = oracle.lower / s, oracle.upper / s
         self.x0 = oracle.x0 / s
         self.n, self.n_ineq, self.n_eq = oracle.n, oracle.n_ineq, oracle.n_eq
@@ -140,8 +140,8 @@ class DynamicQPlus(AbstractSolver):
 
     rho: float = option(1.0, "initial move limit (box half-width) relative to max(1, ||x0||_inf)",
                         "Sec. 3.4 rho = 1 [THESIS], scaled [OWN]")
-    eps_x: float = option(1e-7, "stop: ||d||_inf / (1 + ||x||_inf) below this at a feasible point (in x, also "
-                          "when the solver works in scaled variables)", "[OWN]")
+    eps_x: float = option(1e-7, "stop: ||d||_inf / (1 + ||x||_inf) below this at a feasible point (when the "
+                          "solver works in scaled variables y = x / s: in y and in x)", "[OWN]")
     eps_f: float = option(1e-14, "stop: predicted merit reduction / (1 + |f|) below this at a feasible point "
                           "(both unscaled)", "[OWN]")
     eps_df: float = option(1e-9, "stop: an accepted interior (full) step of a model with curvature information, "
