@@ -109,7 +109,6 @@ class _ScaledVariables:
 
     def __init__(self, oracle: Oracle, s: np.ndarray) -> None:
         self._o, self._s = oracle, s
-        self.variable_scale = s  # read by the step test, which measures a step in x as well as in y
         self.lower, self.upper = oracle.lower / s, oracle.upper / s
         self.x0 = oracle.x0 / s
         self.n, self.n_ineq, self.n_eq = oracle.n, oracle.n_ineq, oracle.n_eq
@@ -352,10 +351,12 @@ class DynamicQPlus(AbstractSolver):
         s = np.maximum(1.0, np.abs(np.clip(oracle.x0, oracle.lower, oracle.upper)))
         if not float(s.max()) > self.scale_spread * float(s.min()):
             return self._minimize(oracle)
-        out = self._minimize(_ScaledVariables(oracle, s))  # type: ignore[arg-type]
+        out = self._minimize(_ScaledVariables(oracle, s), var_scale=s)  # type: ignore[arg-type]
         return dataclasses.replace(out, x=np.clip(s * out.x, oracle.lower, oracle.upper))
 
-    def _minimize(self, oracle: Oracle) -> SolverOutput:
+    def _minimize(self, oracle: Oracle, var_scale: np.ndarray | None = None) -> SolverOutput:
+        """The iteration, on ``oracle`` as given; ``var_scale`` is s when it is the scaled view
+        y = x / s (`minimize`), so that the step test can measure steps in x too."""
         lo, up = oracle.lower, oracle.upper
         x = np.clip(oracle.x0, lo, up)
         ev0 = oracle.evaluate(x)
@@ -381,8 +382,6 @@ class DynamicQPlus(AbstractSolver):
             return out
 
         ev = scaled(ev0)
-        # [OWN] s of y = x / s when the variables are scaled (item 9), else None
-        var_scale: np.ndarray | None = getattr(oracle, "variable_scale", None)
         scale_x = max(1.0, float(np.abs(x).max(initial=0.0)))
         rho = float(self.rho) * scale_x
         n_upd = 0
