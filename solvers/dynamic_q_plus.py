@@ -52,6 +52,11 @@ def _clip(v: float, lo: float, hi: float) -> float:
     return float(min(max(v, lo), hi))
 
 
+def _inf_norm(v: np.ndarray) -> float:
+    """||v||_inf (0 for an empty v) by the ufunc reductions above."""
+    return float(_max(np.abs(v), axis=None, initial=0.0))
+
+
 def _finite(ev: dict[str, Any]) -> bool:
     if not math.isfinite(ev["f"]):
         return False
@@ -444,8 +449,8 @@ class DynamicQPlus(AbstractSolver):
             viol = ev["viol"]
             phi = ev["f"] + mu * ev["l1"]
             pred = mu * ev["l1"] - res.model  # model reduction of phi
-            dn = float(_max(np.abs(d), axis=None, initial=0.0))
-            xs = 1.0 + float(_max(np.abs(x), axis=None, initial=0.0))
+            dn = _inf_norm(d)
+            xs = 1.0 + _inf_norm(x)
             # [OWN] the stopping quantities of the problem itself, not of its scaled form.  With scaled
             # variables the step must be small in y = x / s *and* in x: in y alone, a variable scaled
             # by a large |x0_i| that goes to 0 stopped the run 1/s_i too early (STREGNE: s = 1e10,
@@ -456,8 +461,7 @@ class DynamicQPlus(AbstractSolver):
             # predicted gain of 1e-4 of f passed as 1e-14; KIRBY2LS, MEXHAT)
             small_step = dn / xs < self.eps_x
             if small_step and var_scale is not None:
-                small_step = (float(_max(np.abs(var_scale * d), axis=None, initial=0.0))
-                              < self.eps_x * (1.0 + float(_max(np.abs(var_scale * x), axis=None, initial=0.0))))
+                small_step = _inf_norm(var_scale * d) < self.eps_x * (1.0 + _inf_norm(var_scale * x))
             if viol <= self.eps_c and (small_step or pred / (sf * (1.0 + abs(ev["raw"]["f"]))) < self.eps_f):
                 if self._restart_before_stop(restarted, n_upd):
                     sigma, restarted = self._spherical_restart(s_last, oracle.n), True
@@ -486,7 +490,7 @@ class DynamicQPlus(AbstractSolver):
                 # where the l1 merit rejected the plain one (Maratos effect; HS27, HS47).  One more point.
                 rs = solve_elastic_qp(ev["g"], sigma, evt["ineq"] - ev["ineq_jac"] @ d, ev["ineq_jac"],
                                       evt["eq"] - ev["eq_jac"] @ d, ev["eq_jac"], d_lo, d_up, mu)
-                if rs.ok and float(_max(np.abs(rs.d), axis=None, initial=0.0)) > 0.0:
+                if rs.ok and _inf_norm(rs.d) > 0.0:
                     xc = np.minimum(np.maximum(x + rs.d, lo), up)
                     evc = scaled(oracle.evaluate(xc))
                     if _finite(evc):
