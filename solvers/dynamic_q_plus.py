@@ -13,8 +13,9 @@ Changed (see docs/thesis_solvers.md, "Dynamic-Q+"):
 3. the move limit is a box trust region adapted by the ratio of actual to predicted reduction
    of the l1 exact-penalty merit f + mu (sum max(g,0) + sum |h|), with Fletcher's
    second-order correction of rejected steps along curved constraints;
-4. stopping tests relative to the problem's scale, and one restart from the spherical model
-   before stopping;
+4. stopping tests relative to the problem's scale, one restart from the spherical model
+   before stopping, and no stop where a first-order measure free of the model (the step of the
+   unit model P = I) shows the point far from stationary: the model is reset instead;
 5. variables whose starting magnitudes differ by orders (max(1, |x0_i|) spread over 100x) are
    scaled by them, so that the move limit is per variable.
 """
@@ -133,7 +134,8 @@ class DynamicQPlus(AbstractSolver):
     N^fg); accept it when the l1 merit falls by at least ``eta`` of the model's prediction.
     rho shrinks to ``shrink * ||d||_inf`` on rejection and doubles on a very good step that
     reached the box.  Stops when feasible (violation <= eps_c) and the accepted step or the
-    predicted reduction is small relative to the scale of x and f.
+    predicted reduction is small relative to the scale of x and f, and the unit model's step
+    (`_unit_model_step`) is below ``eps_kkt``.
     """
 
     name = "dynamic-q-plus"
@@ -152,6 +154,10 @@ class DynamicQPlus(AbstractSolver):
                            "between feasible points, changed f by less than this relative to 1 + |f| (the "
                            "thesis's test (3.11), guarded)", "[OWN]; (3.11)")
     eps_c: float = option(1e-7, "feasibility: every constraint violation <= eps_c", "[OWN]")
+    eps_kkt: float = option(0.1, "a stopping test ends the run only where the unit model's step (x in units of "
+                            "1 + ||x||_inf, f in units of 1 + |f|, every curvature 1, box [-1, 1]; r ||grad f||_inf "
+                            "/ (1 + |f|) capped at 1 away from constraints) is below this; otherwise the model is "
+                            "reset to that one, at most once per point; inf: no check", "[OWN]")
     eta: float = option(0.1, "accept a step when actual / predicted merit reduction >= eta", "[OWN] trust region")
     shrink: float = option(0.3, "on rejection rho = shrink * ||d||_inf", "[OWN] trust region")
     sigma_min: float = option(1e-12, "lower safeguard on the curvatures (eigenvalues of the BFGS matrix, of the "
@@ -196,7 +202,7 @@ class DynamicQPlus(AbstractSolver):
                 raise ValueError(f"dynamic-q-plus: {k} must be a positive finite number, got {v!r}")
         if not (self.scale_spread >= 1.0):  # inf allowed (never scale); NaN fails here
             raise ValueError(f"dynamic-q-plus: scale_spread must be >= 1 (inf: never scale), got {self.scale_spread!r}")
-        for k in ("eps_x", "eps_f", "eps_df", "eps_c"):
+        for k in ("eps_x", "eps_f", "eps_df", "eps_c", "eps_kkt"):
             v = getattr(self, k)
             if not (isinstance(v, (int, float)) and v >= 0):
                 raise ValueError(f"dynamic-q-plus: {k} must be >= 0, got {v!r}")
@@ -342,6 +348,26 @@ class DynamicQPlus(AbstractSolver):
         """sigma I with sigma the spherical curvature of eq. (3.6) along the last step, safeguarded."""
         return _clip(s_last, self.sigma_min, self.sigma_max) * np.eye(n)
 
+    @staticmethod
+    def _unit_model_step(ev: dict[str, Any], x: np.ndarray, lo: np.ndarray, up: np.ndarray, mu: float) -> float:
+        """[OWN] A first-order stationarity measure independent of the quasi-Newton matrix and of
+        the scaling of f fixed at x0: with the step in units of r = 1 + ||x||_inf and f in units of
+        1 + |f|, the step of the QP with every curvature 1 in the box [-1, 1] (linearized
+        constraints as in the iteration).  Where no constraint is near, r ||grad f||_inf / (1 + |f|)
+        capped at 1: the relative decrease of f per relative step.  inf when the QP fails."""
+        r = 1.0 + _inf_norm(x)
+        raw = ev["raw"]
+        g = (r / (1.0 + abs(raw["f"]))) * raw["g"]
+        res = solve_elastic_qp(g, np.ones(x.size), ev["ineq"], r * ev["ineq_jac"], ev["eq"], r * ev["eq_jac"],
+                               np.maximum((lo - x) / r, -1.0), np.minimum((up - x) / r, 1.0), 1e6)
+        return _inf_norm(res.d) if res.ok else math.inf
+
+    def _unit_model(self, ev: dict[str, Any], x: np.ndarray, sf: float, n: int) -> np.ndarray:
+        """[OWN] The model of `_unit_model_step` in the iteration's units (f times sf, x): P = c I
+        with c = sf (1 + |f|) / (1 + ||x||_inf)^2, so that its step is the measure's step."""
+        c = _clip(sf * (1.0 + abs(ev["raw"]["f"])) / (1.0 + _inf_norm(x)) ** 2, self.sigma_min, self.sigma_max)
+        return c * np.eye(n) if self.curvature == "bfgs" else np.full(n, c)
+
     def minimize(self, oracle: Oracle) -> SolverOutput:
         """[OWN] Variable scaling, then the iteration (`_minimize`).
 
@@ -396,6 +422,7 @@ class DynamicQPlus(AbstractSolver):
         mu = float(self.mu0)
         log: list[dict[str, Any]] = []
         n_rej = 0
+        n_reset, x_reset = 0, None  # [OWN] resets to the unit model by the stationarity check, at most one per point
         restarted, s_last = False, 1.0  # [OWN] one restart of the quasi-Newton matrix before stopping
         recent: list[dict[str, Any]] = [ev]  # [OWN] non-monotone reference: last accepted points
         for it in range(1, self.max_iter + 1):
@@ -406,7 +433,7 @@ class DynamicQPlus(AbstractSolver):
                 if rho / (1.0 + float(np.abs(x).max(initial=0.0))) < 1e-3 * self.eps_x:
                     return SolverOutput(x, Status.FAILED, f"QP subproblem failed (Clarabel: {res.status}, penalty "
                                         f"weight {mu:.3g}) down to a collapsed move limit", nit=it,
-                                        extra=self._extra(log, n_rej))
+                                        extra=self._extra(log, n_rej, n_reset=n_reset))
                 continue
             # largest multiplier (lam >= 0 already); empty blocks skipped
             mult = max(float(_max(res.lam, axis=None)) if res.lam.size else 0.0,
@@ -466,15 +493,20 @@ class DynamicQPlus(AbstractSolver):
                 if self._restart_before_stop(restarted, n_upd):
                     sigma, restarted = self._spherical_restart(s_last, oracle.n), True
                     continue
+                chi = self._unit_model_step(ev, x, lo, up, mu)
+                if chi > self.eps_kkt and x is not x_reset:
+                    sigma, rho = self._unit_model(ev, x, sf, oracle.n), max(rho, chi * xs)
+                    n_upd, n_reset, x_reset = 0, n_reset + 1, x
+                    continue
                 return SolverOutput(x, Status.CONVERGED, "feasible and step / predicted reduction below tolerance",
-                                    nit=it, extra=self._extra(log, n_rej))
+                                    nit=it, extra=self._extra(log, n_rej, chi, n_reset))
             if (dn == 0.0 or pred <= 0.0) and viol > self.eps_c and mu < MU_MAX:
                 mu *= 10.0  # [OWN] stationary for the merit but infeasible: weigh feasibility more
                 continue
             if dn == 0.0 or pred <= 0.0:
                 return SolverOutput(x, Status.FAILED if viol > self.eps_c else Status.CONVERGED,
                                     "no descent step for the l1 merit (stationary for the model)", nit=it,
-                                    extra=self._extra(log, n_rej))
+                                    extra=self._extra(log, n_rej, n_reset=n_reset))
             xt = np.minimum(np.maximum(x + d, lo), up)  # np.clip, without its wrapper
             evt = scaled(oracle.evaluate(xt))
             ok = _finite(evt)
@@ -533,8 +565,14 @@ class DynamicQPlus(AbstractSolver):
                         sigma, restarted = self._spherical_restart(s_last, oracle.n), True
                         recent = [evt]
                         continue
+                    chi = self._unit_model_step(ev, x, lo, up, mu)
+                    if chi > self.eps_kkt:  # x is a new point here
+                        sigma, rho = self._unit_model(ev, x, sf, oracle.n), max(rho, chi * xs)
+                        n_upd, n_reset, x_reset = 0, n_reset + 1, x
+                        recent = [evt]
+                        continue
                     return SolverOutput(x, Status.CONVERGED, "feasible full step with normalized change of f "
-                                        "< eps_df (as 3.11)", nit=it, extra=self._extra(log, n_rej))
+                                        "< eps_df (as 3.11)", nit=it, extra=self._extra(log, n_rej, chi, n_reset))
                 recent = (recent + [evt])[-self.memory:]
             else:
                 n_rej += 1
@@ -547,10 +585,15 @@ class DynamicQPlus(AbstractSolver):
                     n_upd += 1
                 if rho / xs < 1e-3 * self.eps_x:
                     return SolverOutput(x, Status.CONVERGED if viol <= self.eps_c else Status.FAILED,
-                                        "move limit collapsed", nit=it, extra=self._extra(log, n_rej))
+                                        "move limit collapsed", nit=it, extra=self._extra(log, n_rej, n_reset=n_reset))
         return SolverOutput(x, Status.MAX_ITER, f"max_iter = {self.max_iter} iterations reached",
-                            nit=self.max_iter, extra=self._extra(log, n_rej))
+                            nit=self.max_iter, extra=self._extra(log, n_rej, n_reset=n_reset))
 
     @staticmethod
-    def _extra(log: list[dict[str, Any]], n_rej: int) -> dict[str, Any]:
-        return {"n_rejected": n_rej, "iterations": log}
+    def _extra(log: list[dict[str, Any]], n_rej: int, chi: float | None = None, n_reset: int = 0) -> dict[str, Any]:
+        """The run's record: rejected trials, resets to the unit model, the stationarity measure
+        of `_unit_model_step` where a stopping test ended the run, and the iteration log."""
+        out: dict[str, Any] = {"n_rejected": n_rej, "n_reset": n_reset, "iterations": log}
+        if chi is not None:
+            out["unit_model_step"] = chi
+        return out

@@ -312,3 +312,39 @@ def test_step_stop_with_scaled_variables_needs_a_small_step_in_y_too():
     the optimum 87.9459."""
     r = solve(_s2mpj("MEYER3"), "dynamic-q-plus")
     assert r.nfg > 100 and r.f < 100.0
+
+
+def _raw_point(f: float, g):
+    """An evaluated point as `_minimize` holds it (constraint blocks empty unless given)."""
+    g = np.asarray(g, dtype=float)
+    empty, jac = np.zeros(0), np.zeros((0, g.size))
+    return {"raw": {"f": f, "g": g}, "ineq": empty, "ineq_jac": jac, "eq": empty, "eq_jac": jac}
+
+
+def test_unit_model_step_is_the_relative_gradient_away_from_constraints():
+    """Away from bounds and constraints the measure is r ||grad f||_inf / (1 + |f|), r = 1 + ||x||_inf,
+    capped at 1 (the box [-1, 1] of the unit model)."""
+    x, lo, up = np.array([3.0, -1.0]), np.full(2, -np.inf), np.full(2, np.inf)
+    chi = DynamicQPlus._unit_model_step(_raw_point(9.0, [0.02, -0.05]), x, lo, up, 10.0)
+    assert chi == pytest.approx(4.0 * 0.05 / 10.0, rel=1e-6)
+    assert DynamicQPlus._unit_model_step(_raw_point(9.0, [20.0, 0.0]), x, lo, up, 10.0) == pytest.approx(1.0, rel=1e-6)
+
+
+def test_unit_model_step_is_zero_at_a_kkt_point_on_a_bound():
+    """At x = lower bound with the gradient pushing outwards the point is stationary: no step."""
+    x, lo, up = np.array([0.0, 2.0]), np.array([0.0, -np.inf]), np.full(2, np.inf)
+    chi = DynamicQPlus._unit_model_step(_raw_point(1.0, [5.0, 0.0]), x, lo, up, 10.0)
+    assert chi < 1e-7
+
+
+def test_no_stop_at_a_point_far_from_stationary():
+    """MISRA1BLS (S2MPJ, least squares, optimum 0.0754647): the model's steps become small at
+    f = 7.31, where a step of the size of x would still change f by far more than 10% of
+    1 + |f| to first order.  Without the check (eps_kkt = inf) the run stops there after 12 N^fg;
+    with it the model is reset to the unit model and the run reaches the optimum."""
+    p = _s2mpj("MISRA1BLS")
+    unchecked = solve(p, "dynamic-q-plus", eps_kkt=math.inf)
+    assert unchecked.status == "converged" and unchecked.f > 1.0
+    r = solve(p, "dynamic-q-plus")
+    assert r.status == "converged" and r.f == pytest.approx(0.0754647, rel=1e-5)
+    assert r.extra["n_reset"] >= 1 and r.extra["unit_model_step"] <= 0.1
