@@ -348,3 +348,34 @@ def test_no_stop_at_a_point_far_from_stationary():
     r = solve(p, "dynamic-q-plus")
     assert r.status == "converged" and r.f == pytest.approx(0.0754647, rel=1e-5)
     assert r.extra["n_reset"] >= 1 and r.extra["unit_model_step"] <= 0.1
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 10_000), st.integers(1, 5), st.integers(0, 3), st.integers(0, 2), st.booleans())
+def test_unit_model_step_bound_is_an_upper_bound(seed, n, p, q, bounded):
+    """Weak duality holds for any multipliers: the bound is never below the QP's answer (it is
+    used only to skip the QP where it is already below eps_kkt), up to Clarabel's accuracy
+    (an interior point stays about 1e-6 off a bound that the exact answer touches)."""
+    rng = np.random.default_rng(seed)
+    x = rng.normal(size=n) * rng.choice([0.1, 1.0, 10.0])
+    lo = x - rng.uniform(0.0, 2.0, n) if bounded else np.full(n, -np.inf)
+    up = x + rng.uniform(0.0, 2.0, n) if bounded else np.full(n, np.inf)
+    if bounded:
+        lo[0] = x[0]  # one variable on its bound
+    ev = {"raw": {"f": float(rng.normal() * 10.0), "g": rng.normal(size=n) * rng.choice([1e-4, 1e-2, 1.0])},
+          "ineq": -rng.uniform(0.0, 1.0, p) * rng.choice([0.0, 1.0]), "ineq_jac": rng.normal(size=(p, n)),
+          "eq": rng.normal(size=q) * 1e-9, "eq_jac": rng.normal(size=(q, n))}
+    ev["l1"] = float(np.maximum(ev["ineq"], 0.0).sum() + np.abs(ev["eq"]).sum())
+    lam, nu, sf = rng.uniform(0.0, 2.0, p), rng.normal(size=q), float(rng.uniform(1e-3, 1.0))
+    exact = DynamicQPlus._unit_model_step(ev, x, lo, up, 10.0)
+    bound = DynamicQPlus._unit_model_step_bound(ev, x, lo, up, lam, nu, sf)
+    assert bound >= exact - 1e-5 * (1.0 + exact)
+
+
+def test_unit_model_step_bound_is_tight_at_a_kkt_point():
+    """At a KKT point with its own multipliers the bound is (near) 0, so no QP is solved there:
+    min x1 + x2 s.t. 1 - x1 <= 0, 1 - x2 <= 0 at x = (1, 1), lam = 1 (sf = 1)."""
+    x, lo, up = np.ones(2), np.full(2, -np.inf), np.full(2, np.inf)
+    ev = {"raw": {"f": 2.0, "g": np.ones(2)}, "ineq": np.zeros(2), "ineq_jac": -np.eye(2),
+          "eq": np.zeros(0), "eq_jac": np.zeros((0, 2)), "l1": 0.0}
+    assert DynamicQPlus._unit_model_step_bound(ev, x, lo, up, np.ones(2), np.zeros(0), 1.0) < 1e-12
