@@ -32,7 +32,7 @@ from scipy.linalg.lapack import dpotrf
 from problems import Oracle
 
 from ._base import AbstractSolver, final, option
-from ._qp_subproblem import _sum, l1_model, linearized_violations, solve_elastic_qp
+from ._qp_subproblem import ElasticQPResult, _sum, l1_model, linearized_violations, solve_elastic_qp
 from ._result import SolverOutput, Status
 from ._spherical import two_point_curvature
 
@@ -350,7 +350,7 @@ class DynamicQPlus(AbstractSolver):
         return _clip(s_last, self.sigma_min, self.sigma_max) * np.eye(n)
 
     @staticmethod
-    def _unit_model_step(ev: dict[str, Any], x: np.ndarray, lo: np.ndarray, up: np.ndarray, mu: float) -> float:
+    def _unit_model_step(ev: dict[str, Any], x: np.ndarray, lo: np.ndarray, up: np.ndarray) -> float:
         """[OWN] A first-order stationarity measure independent of the quasi-Newton matrix and of
         the scaling of f fixed at x0: with the step in units of r = 1 + ||x||_inf and f in units of
         1 + |f|, the step of the QP with every curvature 1 in the box [-1, 1] (linearized
@@ -395,12 +395,12 @@ class DynamicQPlus(AbstractSolver):
                 terms[on] = np.minimum(terms[on], 2.0 * np.abs(grad[on]) * np.maximum(gap_to_bound[on], 0.0) / r)
         return math.sqrt(max(float(terms.sum()) + 2.0 * gap, 0.0))
 
-    def _stationarity(self, ev: dict[str, Any], x: np.ndarray, lo: np.ndarray, up: np.ndarray, res: Any,
-                      sf: float, mu: float) -> float:
+    def _stationarity(self, ev: dict[str, Any], x: np.ndarray, lo: np.ndarray, up: np.ndarray,
+                      res: ElasticQPResult, sf: float) -> float:
         """[OWN] `_unit_model_step`, or its upper bound `_unit_model_step_bound` where that is
         already below ``eps_kkt`` (the same decision, without the QP)."""
         bound = self._unit_model_step_bound(ev, x, lo, up, res.lam, res.nu, sf)
-        return bound if bound <= self.eps_kkt else self._unit_model_step(ev, x, lo, up, mu)
+        return bound if bound <= self.eps_kkt else self._unit_model_step(ev, x, lo, up)
 
     def _unit_model(self, ev: dict[str, Any], x: np.ndarray, sf: float, n: int) -> np.ndarray:
         """[OWN] The model of `_unit_model_step` in the iteration's units (f times sf, x): P = c I
@@ -533,7 +533,7 @@ class DynamicQPlus(AbstractSolver):
                 if self._restart_before_stop(restarted, n_upd):
                     sigma, restarted = self._spherical_restart(s_last, oracle.n), True
                     continue
-                chi = self._stationarity(ev, x, lo, up, res, sf, mu)
+                chi = self._stationarity(ev, x, lo, up, res, sf)
                 if chi > self.eps_kkt and x is not x_reset:
                     sigma, rho = self._unit_model(ev, x, sf, oracle.n), max(rho, chi * xs)
                     n_upd, n_reset, x_reset = 0, n_reset + 1, x
@@ -605,7 +605,7 @@ class DynamicQPlus(AbstractSolver):
                         sigma, restarted = self._spherical_restart(s_last, oracle.n), True
                         recent = [evt]
                         continue
-                    chi = self._stationarity(ev, x, lo, up, res, sf, mu)
+                    chi = self._stationarity(ev, x, lo, up, res, sf)
                     if chi > self.eps_kkt:  # x is a new point here
                         sigma, rho = self._unit_model(ev, x, sf, oracle.n), max(rho, chi * xs)
                         n_upd, n_reset, x_reset = 0, n_reset + 1, x

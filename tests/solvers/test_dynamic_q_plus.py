@@ -325,15 +325,15 @@ def test_unit_model_step_is_the_relative_gradient_away_from_constraints():
     """Away from bounds and constraints the measure is r ||grad f||_inf / (1 + |f|), r = 1 + ||x||_inf,
     capped at 1 (the box [-1, 1] of the unit model)."""
     x, lo, up = np.array([3.0, -1.0]), np.full(2, -np.inf), np.full(2, np.inf)
-    chi = DynamicQPlus._unit_model_step(_raw_point(9.0, [0.02, -0.05]), x, lo, up, 10.0)
+    chi = DynamicQPlus._unit_model_step(_raw_point(9.0, [0.02, -0.05]), x, lo, up)
     assert chi == pytest.approx(4.0 * 0.05 / 10.0, rel=1e-6)
-    assert DynamicQPlus._unit_model_step(_raw_point(9.0, [20.0, 0.0]), x, lo, up, 10.0) == pytest.approx(1.0, rel=1e-6)
+    assert DynamicQPlus._unit_model_step(_raw_point(9.0, [20.0, 0.0]), x, lo, up) == pytest.approx(1.0, rel=1e-6)
 
 
 def test_unit_model_step_is_zero_at_a_kkt_point_on_a_bound():
     """At x = lower bound with the gradient pushing outwards the point is stationary: no step."""
     x, lo, up = np.array([0.0, 2.0]), np.array([0.0, -np.inf]), np.full(2, np.inf)
-    chi = DynamicQPlus._unit_model_step(_raw_point(1.0, [5.0, 0.0]), x, lo, up, 10.0)
+    chi = DynamicQPlus._unit_model_step(_raw_point(1.0, [5.0, 0.0]), x, lo, up)
     assert chi < 1e-7
 
 
@@ -367,7 +367,7 @@ def test_unit_model_step_bound_is_an_upper_bound(seed, n, p, q, bounded):
           "eq": rng.normal(size=q) * 1e-9, "eq_jac": rng.normal(size=(q, n))}
     ev["l1"] = float(np.maximum(ev["ineq"], 0.0).sum() + np.abs(ev["eq"]).sum())
     lam, nu, sf = rng.uniform(0.0, 2.0, p), rng.normal(size=q), float(rng.uniform(1e-3, 1.0))
-    exact = DynamicQPlus._unit_model_step(ev, x, lo, up, 10.0)
+    exact = DynamicQPlus._unit_model_step(ev, x, lo, up)
     bound = DynamicQPlus._unit_model_step_bound(ev, x, lo, up, lam, nu, sf)
     assert bound >= exact - 1e-5 * (1.0 + exact)
 
