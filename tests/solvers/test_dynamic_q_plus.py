@@ -104,10 +104,14 @@ def test_bfgs_update_that_overflows_keeps_the_matrix():
             assert np.array_equal(out, B)
 
 
-def _point(gf, g0, Jg):
-    ev = {"g": np.asarray(gf, float), "ineq": np.asarray(g0, float), "ineq_jac": np.asarray(Jg, float),
-          "eq": np.zeros(0), "eq_jac": np.zeros((0, len(gf)))}
-    ev["l1"] = float(np.maximum(ev["ineq"], 0.0).sum())
+def _point(gf, g0=(), Jg=None, h0=(), Jh=None, f: float = 0.0):
+    """An evaluated point as `_minimize` holds it (f unscaled, sf = 1: "raw" is the point itself);
+    constraint blocks empty unless given."""
+    gf = np.asarray(gf, float)
+    ev = {"g": gf, "raw": {"f": f, "g": gf}, "ineq": np.asarray(g0, float),
+          "ineq_jac": np.asarray(Jg, float) if Jg is not None else np.zeros((0, gf.size)),
+          "eq": np.asarray(h0, float), "eq_jac": np.asarray(Jh, float) if Jh is not None else np.zeros((0, gf.size))}
+    ev["l1"] = float(np.maximum(ev["ineq"], 0.0).sum() + np.abs(ev["eq"]).sum())
     return ev
 
 
@@ -314,26 +318,19 @@ def test_step_stop_with_scaled_variables_needs_a_small_step_in_y_too():
     assert r.nfg > 100 and r.f < 100.0
 
 
-def _raw_point(f: float, g):
-    """An evaluated point as `_minimize` holds it (constraint blocks empty unless given)."""
-    g = np.asarray(g, dtype=float)
-    empty, jac = np.zeros(0), np.zeros((0, g.size))
-    return {"raw": {"f": f, "g": g}, "ineq": empty, "ineq_jac": jac, "eq": empty, "eq_jac": jac}
-
-
 def test_unit_model_step_is_the_relative_gradient_away_from_constraints():
     """Away from bounds and constraints the measure is r ||grad f||_inf / (1 + |f|), r = 1 + ||x||_inf,
     capped at 1 (the box [-1, 1] of the unit model)."""
     x, lo, up = np.array([3.0, -1.0]), np.full(2, -np.inf), np.full(2, np.inf)
-    chi = DynamicQPlus._unit_model_step(_raw_point(9.0, [0.02, -0.05]), x, lo, up)
+    chi = DynamicQPlus._unit_model_step(_point([0.02, -0.05], f=9.0), x, lo, up)
     assert chi == pytest.approx(4.0 * 0.05 / 10.0, rel=1e-6)
-    assert DynamicQPlus._unit_model_step(_raw_point(9.0, [20.0, 0.0]), x, lo, up) == pytest.approx(1.0, rel=1e-6)
+    assert DynamicQPlus._unit_model_step(_point([20.0, 0.0], f=9.0), x, lo, up) == pytest.approx(1.0, rel=1e-6)
 
 
 def test_unit_model_step_is_zero_at_a_kkt_point_on_a_bound():
     """At x = lower bound with the gradient pushing outwards the point is stationary: no step."""
     x, lo, up = np.array([0.0, 2.0]), np.array([0.0, -np.inf]), np.full(2, np.inf)
-    chi = DynamicQPlus._unit_model_step(_raw_point(1.0, [5.0, 0.0]), x, lo, up)
+    chi = DynamicQPlus._unit_model_step(_point([5.0, 0.0], f=1.0), x, lo, up)
     assert chi < 1e-7
 
 
@@ -362,10 +359,9 @@ def test_unit_model_step_bound_is_an_upper_bound(seed, n, p, q, bounded):
     up = x + rng.uniform(0.0, 2.0, n) if bounded else np.full(n, np.inf)
     if bounded:
         lo[0] = x[0]  # one variable on its bound
-    ev = {"raw": {"f": float(rng.normal() * 10.0), "g": rng.normal(size=n) * rng.choice([1e-4, 1e-2, 1.0])},
-          "ineq": -rng.uniform(0.0, 1.0, p) * rng.choice([0.0, 1.0]), "ineq_jac": rng.normal(size=(p, n)),
-          "eq": rng.normal(size=q) * 1e-9, "eq_jac": rng.normal(size=(q, n))}
-    ev["l1"] = float(np.maximum(ev["ineq"], 0.0).sum() + np.abs(ev["eq"]).sum())
+    f, gf = float(rng.normal() * 10.0), rng.normal(size=n) * rng.choice([1e-4, 1e-2, 1.0])
+    g0, Jg = -rng.uniform(0.0, 1.0, p) * rng.choice([0.0, 1.0]), rng.normal(size=(p, n))
+    ev = _point(gf, g0, Jg, rng.normal(size=q) * 1e-9, rng.normal(size=(q, n)), f=f)
     lam, nu, sf = rng.uniform(0.0, 2.0, p), rng.normal(size=q), float(rng.uniform(1e-3, 1.0))
     exact = DynamicQPlus._unit_model_step(ev, x, lo, up)
     bound = DynamicQPlus._unit_model_step_bound(ev, x, lo, up, lam, nu, sf)
@@ -376,6 +372,5 @@ def test_unit_model_step_bound_is_tight_at_a_kkt_point():
     """At a KKT point with its own multipliers the bound is (near) 0, so no QP is solved there:
     min x1 + x2 s.t. 1 - x1 <= 0, 1 - x2 <= 0 at x = (1, 1), lam = 1 (sf = 1)."""
     x, lo, up = np.ones(2), np.full(2, -np.inf), np.full(2, np.inf)
-    ev = {"raw": {"f": 2.0, "g": np.ones(2)}, "ineq": np.zeros(2), "ineq_jac": -np.eye(2),
-          "eq": np.zeros(0), "eq_jac": np.zeros((0, 2)), "l1": 0.0}
+    ev = _point(np.ones(2), np.zeros(2), -np.eye(2), f=2.0)
     assert DynamicQPlus._unit_model_step_bound(ev, x, lo, up, np.ones(2), np.zeros(0), 1.0) < 1e-12
