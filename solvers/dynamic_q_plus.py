@@ -17,7 +17,10 @@ Changed (see docs/thesis_solvers.md, "Dynamic-Q+"):
    before stopping, and no stop where a first-order measure free of the model (the step of the
    unit model P = I) shows the point far from stationary: the model is reset instead;
 5. variables whose starting magnitudes differ by orders (max(1, |x0_i|) spread over 100x) are
-   scaled by them, so that the move limit is per variable.
+   scaled by them, so that the move limit is per variable;
+6. with constraints, f's scale (fixed from grad f(x0)) is refreshed once the gradient has fallen
+   by orders, so that f keeps its weight against the penalty term; and the model's first
+   curvature is never taken from a rejected trial whose curvature (3.6) is beyond the cap.
 """
 
 from __future__ import annotations
@@ -192,6 +195,10 @@ class DynamicQPlus(AbstractSolver):
     scale_spread: float = option(100.0, "work in y = x / s, s_i = max(1, |x0_i|), when the largest s_i is over this "
                                  "many times the smallest (variables of different orders of magnitude); "
                                  "inf: never, 1: always", "[OWN]")
+    rescale_f: float = option(100.0, "with constraints: when ||grad f|| at an accepted point has fallen below "
+                              "1 / this of the ||grad f|| that set f's scale (at x0: f is scaled by "
+                              "1 / max(1, ||grad f(x0)||)), f is scaled by 1 / max(1, ||grad f||) there instead (and "
+                              "the model with it, up to the cap sigma_max); inf: never", "[OWN]")
     max_iter: int = option(1000, "maximum number of iterations, each one trial point of a QP step (rejected "
                            "trials included), plus one more when a second-order correction is tried; the field's "
                            "caps are of this order (trust-constr 1000 iterations, Ipopt 3000)", "[OWN]")
@@ -201,6 +208,8 @@ class DynamicQPlus(AbstractSolver):
             v = getattr(self, k)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
                 raise ValueError(f"dynamic-q-plus: {k} must be a positive finite number, got {v!r}")
+        if not (self.rescale_f >= 1.0):  # inf allowed (never); NaN fails here
+            raise ValueError(f"dynamic-q-plus: rescale_f must be >= 1 (inf: never), got {self.rescale_f!r}")
         if not (self.scale_spread >= 1.0):  # inf allowed (never scale); NaN fails here
             raise ValueError(f"dynamic-q-plus: scale_spread must be >= 1 (inf: never scale), got {self.scale_spread!r}")
         for k in ("eps_x", "eps_f", "eps_df", "eps_c", "eps_kkt"):
@@ -408,6 +417,24 @@ class DynamicQPlus(AbstractSolver):
         c = _clip(sf * (1.0 + abs(ev["raw"]["f"])) / (1.0 + _inf_norm(x)) ** 2, self.sigma_min, self.sigma_max)
         return c * np.eye(n) if self.curvature == "bfgs" else np.full(n, c)
 
+    def _objective_rescale(self, sf: float, g_raw: np.ndarray, sigma: np.ndarray) -> float:
+        """[OWN] The factor c >= 1 by which f's scale sf grows at an accepted point (1: unchanged).
+
+        sf = 1 / max(1, ||grad f(x0)||) balances f against the penalty term at x0.  Where x0 is
+        far out (LUKVLE4: ||grad f(x0)|| = 3e7, about 10 near the optimum) f shrinks to 1e-7 of
+        the weight mu0 there, every step is judged by its violation alone, and the run crawls
+        along the constraints on rejected plain steps and second-order corrections until the cap.
+        Once ||grad f|| has fallen below sf's gradient by the factor ``rescale_f``, f is scaled by
+        1 / max(1, ||grad f||) instead.  The model is the Hessian of the scaled Lagrangian and is
+        scaled with it, so c stops where its trace would pass sigma_max (the cap would change the
+        model; STREGNE, whose gradient falls by 1e10 in three steps).
+        """
+        sf_now = 1.0 / max(1.0, float(np.linalg.norm(g_raw)))
+        if not sf_now > self.rescale_f * sf:
+            return 1.0
+        trace = float(sigma.trace()) if sigma.ndim == 2 else float(sigma.sum())
+        return max(1.0, min(sf_now / sf, self.sigma_max / trace))
+
     def minimize(self, oracle: Oracle) -> SolverOutput:
         """[OWN] Variable scaling, then the iteration (`_minimize`).
 
@@ -613,14 +640,23 @@ class DynamicQPlus(AbstractSolver):
                         continue
                     return SolverOutput(x, Status.CONVERGED, "feasible full step with normalized change of f "
                                         "< eps_df (as 3.11)", nit=it, extra=self._extra(log, n_rej, chi, n_reset))
+                c = self._objective_rescale(sf, evt["raw"]["g"], sigma) if has_ineq or has_eq else 1.0
+                if c > 1.0:  # `scaled` reads sf; the non-monotone reference restarts in the new units
+                    sf, sigma, recent = sf * c, sigma * c, []
+                    ev = evt = scaled(evt["raw"])
                 recent = (recent + [evt])[-self.memory:]
             else:
                 n_rej += 1
                 rho = self.shrink * dn
-                if ok and s is not None and self.curvature == "bfgs":  # secant information of the trial
+                # [OWN] the model's first curvature is not taken from a trial whose curvature (3.6) is
+                # beyond the cap: the model would start at sigma_max in every direction and keep it in
+                # those its steps do not explore (OSBORNEA, SSBRYBND: overflowing exponentials at the
+                # first trial, curvature 1e42; the run crawled on steps of 1e-5 to the iteration cap)
+                informative = ok and s is not None and (n_upd > 0 or s <= self.sigma_max)
+                if informative and self.curvature == "bfgs":  # secant information of the trial
                     sigma = self._update(sigma, s, ev, evt, lam_new, nu_new, dx, first=n_upd == 0)
                     n_upd += 1
-                elif ok and s is not None:  # the model was too optimistic along d: only raise curvatures
+                elif informative:  # the model was too optimistic along d: only raise curvatures
                     sigma = np.maximum(sigma, self._update(sigma, s, ev, evt, lam_new, nu_new, dx, first=n_upd == 0))
                     n_upd += 1
                 if rho / xs < 1e-3 * self.eps_x:

@@ -374,3 +374,38 @@ def test_unit_model_step_bound_is_tight_at_a_kkt_point():
     x, lo, up = np.ones(2), np.full(2, -np.inf), np.full(2, np.inf)
     ev = _point(np.ones(2), np.zeros(2), -np.eye(2), f=2.0)
     assert DynamicQPlus._unit_model_step_bound(ev, x, lo, up, np.ones(2), np.zeros(0), 1.0) < 1e-12
+
+
+def test_objective_rescaled_once_its_gradient_has_fallen():
+    """LUKVLE4 (S2MPJ, 8 equalities, optimum 7.987): ||grad f(x0)|| = 3e7, so f enters the merit
+    at 1e-7 of its size near the optimum, and with f's scale fixed at x0 (rescale_f = inf) the
+    run crawls on the violation and is far from the optimum after 300 iterations; by default f's
+    scale is refreshed on the way and the run converges."""
+    p = _s2mpj("LUKVLE4")
+    fixed = solve(p, "dynamic-q-plus", rescale_f=math.inf, max_iter=300)
+    assert fixed.status == "max_iter" and fixed.f > 9.0
+    r = solve(p, "dynamic-q-plus", max_iter=300)
+    assert r.status == "converged" and r.f == pytest.approx(7.987, rel=1e-4) and r.max_violation <= 1e-7
+
+
+def test_objective_rescale_factor():
+    """The factor is 1 until ||grad f|| has fallen by rescale_f, then the fall itself, but never
+    so much that the model's trace passes sigma_max."""
+    s = DynamicQPlus()
+    B = np.diag([1.0, 2.0])
+    assert s._objective_rescale(1e-6, np.array([3e5, 4e5]), B) == 1.0  # fell by 2x only
+    assert s._objective_rescale(1e-6, np.array([3.0, 4.0]), B) == pytest.approx(2e5)  # 1/5 against 1e-6
+    assert s._objective_rescale(1e-6, np.array([0.0, 0.0]), B) == pytest.approx(1e6)  # sf capped at 1
+    assert s._objective_rescale(1e-6, np.array([0.0, 0.0]), 1e4 * B) == pytest.approx(1e8 / 3e4)  # trace cap
+    assert s._objective_rescale(1e-6, np.array([0.0, 0.0]), 1e9 * B) == 1.0  # never below 1
+    with pytest.raises(ValueError, match="rescale_f"):
+        DynamicQPlus(rescale_f=0.5)
+
+
+def test_first_curvature_not_taken_from_a_far_trial():
+    """OSBORNEA (S2MPJ, least squares, optimum 5.46e-5): the first trial's exponentials overflow
+    (curvature (3.6) of 1e42 along it).  A model started from that, at sigma_max in every
+    direction, crawled on steps of 1e-5 to the iteration cap at f = 0.115; the curvature is now
+    taken from the next, closer trial."""
+    r = solve(_s2mpj("OSBORNEA"), "dynamic-q-plus", max_iter=300)
+    assert r.status == "converged" and r.f < 1e-4
