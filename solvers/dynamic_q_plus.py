@@ -468,6 +468,9 @@ class DynamicQPlus(AbstractSolver):
 
         sg_rows, sh_rows = sg[:, None], sh[:, None]
         has_ineq, has_eq = oracle.n_ineq > 0, oracle.n_eq > 0
+        # `_objective_rescale` can return more than 1 only while rescale_f sf < 1 (the new sf is at most
+        # 1): tested once here and after each rescale, not by a gradient norm at every accepted point
+        rescalable = (has_ineq or has_eq) and self.rescale_f * sf < 1.0
 
         def scaled(e: dict[str, Any]) -> dict[str, Any]:
             out = {"f": sf * e["f"], "g": sf * e["g"], "raw": e}
@@ -640,10 +643,11 @@ class DynamicQPlus(AbstractSolver):
                         continue
                     return SolverOutput(x, Status.CONVERGED, "feasible full step with normalized change of f "
                                         "< eps_df (as 3.11)", nit=it, extra=self._extra(log, n_rej, chi, n_reset))
-                c = self._objective_rescale(sf, evt["raw"]["g"], sigma) if has_ineq or has_eq else 1.0
+                c = self._objective_rescale(sf, evt["raw"]["g"], sigma) if rescalable else 1.0
                 if c > 1.0:  # `scaled` reads sf; the non-monotone reference restarts in the new units
                     sf, sigma, recent = sf * c, sigma * c, []
                     ev = evt = scaled(evt["raw"])
+                    rescalable = self.rescale_f * sf < 1.0
                 recent = (recent + [evt])[-self.memory:]
             else:
                 n_rej += 1
