@@ -18,6 +18,7 @@ import dataclasses
 import os
 import pathlib
 import textwrap
+from collections.abc import Sequence
 
 import numpy as np
 import pandas as pd
@@ -58,14 +59,29 @@ def load_counts(root: str | os.PathLike[str], suite: str) -> pd.DataFrame:
 
 
 def save_baseline(suite: str, out: str | os.PathLike[str] = "results",
-                  to: str | os.PathLike[str] = "results/baseline") -> pathlib.Path:
-    """Write the deterministic counts of the stored runs to ``to/<suite>/counts.csv``."""
+                  to: str | os.PathLike[str] = "results/baseline",
+                  solvers: Sequence[str] | None = None) -> pathlib.Path:
+    """Write the deterministic counts of the stored runs to ``to/<suite>/counts.csv``.
+
+    With ``solvers``, only those solvers' rows are replaced and every other row of an existing
+    baseline is kept as it is (a deliberate change of one solver refreshes that solver only;
+    a baseline may leave out solvers whose counts vary with the machine, such as SLSQP's).
+    """
     runs = load_results(suite, out)
     runs = runs[runs["status"] != "timeout"]  # a time-out depends on the machine, not the code
     path = pathlib.Path(to) / suite / "counts.csv"
+    rows = runs[BASELINE_COLUMNS]
+    if solvers is not None:
+        unknown = sorted(set(solvers) - set(runs["solver"]))
+        if unknown:
+            raise HarnessArgumentError(f"baseline of {suite!r}: no stored runs of {unknown} under {out}; "
+                             f"stored solvers: {sorted(set(runs['solver']))}")
+        rows = rows[rows["solver"].isin(list(solvers))]
+        if path.exists():
+            kept = load_counts(to, suite)
+            rows = pd.concat([kept[~kept["solver"].isin(list(solvers))][BASELINE_COLUMNS], rows])
     path.parent.mkdir(parents=True, exist_ok=True)
-    runs[BASELINE_COLUMNS].sort_values(["case_id", "solver", "settings_hash"]).to_csv(
-        path, index=False, float_format="%.10g")
+    rows.sort_values(["case_id", "solver", "settings_hash"]).to_csv(path, index=False, float_format="%.10g")
     return path
 
 

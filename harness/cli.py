@@ -146,6 +146,8 @@ def _parser() -> argparse.ArgumentParser:
     b.add_argument("--suite", required=True)
     b.add_argument("--out", default="results")
     b.add_argument("--to", default=os.path.join("results", "baseline"))
+    b.add_argument("--solvers", default=None,
+                   help="comma-separated: replace only these solvers' rows, keep the baseline's others")
     return ap
 
 
@@ -316,7 +318,8 @@ def _cmd_reference(a: argparse.Namespace) -> int:
 def _cmd_baseline(a: argparse.Namespace) -> int:
     from ._compare import save_baseline
 
-    print(save_baseline(a.suite, a.out, a.to))
+    solvers = [s.strip() for s in a.solvers.split(",") if s.strip()] if a.solvers else None
+    print(save_baseline(a.suite, a.out, a.to, solvers))
     return 0
 
 

@@ -111,3 +111,22 @@ def test_compare_a_finished_time_out_is_a_matter_of_time_not_an_improvement():
     v = compare_runs(old, new).changes.set_index("case_id").verdict
     assert v["p1"] == "finished in time: timeout -> converged (solved)"
     assert v["p2"].startswith("REGRESSION: solved -> unsolved (timeout)")  # a new time-out still counts
+
+
+def test_baseline_of_some_solvers_keeps_the_other_rows(stored, tmp_path, capsys):
+    """`baseline --solvers`: a deliberate change of one solver refreshes that solver's rows only."""
+    tiny, out = stored
+    base = tmp_path / "baseline"
+    save_baseline("tiny", out, base)
+    csv = base / "tiny" / "counts.csv"
+    stored_rows = pd.read_csv(csv, keep_default_na=False, na_values=[""])
+    edited = stored_rows.assign(nfg=stored_rows["nfg"] + 1000)  # every row of the baseline edited
+    other = edited.head(1).assign(solver="other-solver")  # a solver without stored runs here
+    pd.concat([edited, other]).to_csv(csv, index=False)
+    assert main(["baseline", "--suite", "tiny", "--out", str(out), "--to", str(base), "--solvers", "sqsd"]) == 0
+    after = pd.read_csv(csv, keep_default_na=False, na_values=[""])
+    assert len(after) == len(stored_rows) + 1
+    assert sorted(after[after.solver == "sqsd"].nfg) == sorted(stored_rows.nfg)  # refreshed from the runs
+    assert list(after[after.solver == "other-solver"].nfg) == list(other.nfg)  # kept as it was
+    assert main(["baseline", "--suite", "tiny", "--out", str(out), "--to", str(base), "--solvers", "nosuch"]) == 2
+    assert "nosuch" in capsys.readouterr().err
