@@ -72,14 +72,15 @@ def save_baseline(suite: str, out: str | os.PathLike[str] = "results",
     path = pathlib.Path(to) / suite / "counts.csv"
     rows = runs[BASELINE_COLUMNS]
     if solvers is not None:
-        unknown = sorted(set(solvers) - set(runs["solver"]))
+        names = sorted(set(solvers))
+        unknown = sorted(set(names) - set(runs["solver"]))
         if unknown:
             raise HarnessArgumentError(f"baseline of {suite!r}: no stored runs of {unknown} under {out}; "
-                             f"stored solvers: {sorted(set(runs['solver']))}")
-        rows = rows[rows["solver"].isin(list(solvers))]
+                                       f"stored solvers: {sorted(set(runs['solver']))}")
+        rows = rows[rows["solver"].isin(names)]
         if path.exists():
             kept = load_counts(to, suite)
-            rows = pd.concat([kept[~kept["solver"].isin(list(solvers))][BASELINE_COLUMNS], rows])
+            rows = pd.concat([kept[~kept["solver"].isin(names)][BASELINE_COLUMNS], rows])
     path.parent.mkdir(parents=True, exist_ok=True)
     rows.sort_values(["case_id", "solver", "settings_hash"]).to_csv(path, index=False, float_format="%.10g")
     return path

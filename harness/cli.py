@@ -318,8 +318,7 @@ def _cmd_reference(a: argparse.Namespace) -> int:
 def _cmd_baseline(a: argparse.Namespace) -> int:
     from ._compare import save_baseline
 
-    solvers = [s.strip() for s in a.solvers.split(",") if s.strip()] if a.solvers else None
-    print(save_baseline(a.suite, a.out, a.to, solvers))
+    print(save_baseline(a.suite, a.out, a.to, _csv(a.solvers)))
     return 0
 
 
