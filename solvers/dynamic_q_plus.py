@@ -57,6 +57,11 @@ def _clip(v: float, lo: float, hi: float) -> float:
     return float(min(max(v, lo), hi))
 
 
+def _objective_scale(g: np.ndarray) -> float:
+    """[OWN] f's scale 1 / max(1, ||grad f||): f and the penalty term comparable where g is taken."""
+    return 1.0 / max(1.0, float(np.linalg.norm(g)))
+
+
 def _inf_norm(v: np.ndarray) -> float:
     """||v||_inf (0 for an empty v) by the ufunc reductions above."""
     return float(_max(np.abs(v), axis=None, initial=0.0))
@@ -154,9 +159,10 @@ class DynamicQPlus(AbstractSolver):
                           "solver works in scaled variables y = x / s: in y and in x)", "[OWN]")
     eps_f: float = option(1e-14, "stop: predicted merit reduction / (1 + |f|) below this at a feasible point "
                           "(both unscaled)", "[OWN]")
-    eps_df: float = option(1e-9, "stop: an accepted interior (full) step of a model with curvature information, "
+    eps_df: float = option(0.0, "stop: an accepted interior (full) step of a model with curvature information, "
                            "between feasible points, changed f by less than this relative to 1 + |f| (the "
-                           "thesis's test (3.11), guarded)", "[OWN]; (3.11)")
+                           "thesis's test (3.11), guarded); 0: off (1e-9 until item 15 of docs/thesis_solvers.md: "
+                           "it ended runs crossing a plateau)", "[OWN]; (3.11)")
     eps_c: float = option(1e-7, "feasibility: every constraint violation <= eps_c", "[OWN]")
     eps_kkt: float = option(0.1, "a stopping test ends the run only where the unit model's step (x in units of "
                             "1 + ||x||_inf, f in units of 1 + |f|, every curvature 1, box [-1, 1]; r ||grad f||_inf "
@@ -190,8 +196,9 @@ class DynamicQPlus(AbstractSolver):
     penalty_decrease: bool = option(False, "at a feasible point, lower the penalty weight to 10x what the "
                                     "multipliers need when it has grown past 100x that and the step uses no slacks "
                                     "(the step is the same for any weight above the multipliers; only the merit "
-                                    "changes). Off: it solves 4 more CUTEst problems but loses W_p's enclosure on "
-                                    "3-RPR D P1 (docs/thesis_solvers.md)", "[OWN]")
+                                    "changes). Off: it solves 3 more CUTEst problems and keeps every 3-RPR enclosure, "
+                                    "but MESH's iterates then run off (f -7e22 at violation 1e10; docs/thesis_solvers.md)",
+                                    "[OWN]")
     scale_spread: float = option(100.0, "work in y = x / s, s_i = max(1, |x0_i|), when the largest s_i is over this "
                                  "many times the smallest (variables of different orders of magnitude); "
                                  "inf: never, 1: always", "[OWN]")
@@ -429,7 +436,7 @@ class DynamicQPlus(AbstractSolver):
         scaled with it, so c stops where its trace would pass sigma_max (the cap would change the
         model; STREGNE, whose gradient falls by 1e10 in three steps).
         """
-        sf_now = 1.0 / max(1.0, float(np.linalg.norm(g_raw)))
+        sf_now = _objective_scale(g_raw)
         if not sf_now > self.rescale_f * sf:
             return 1.0
         trace = float(sigma.trace()) if sigma.ndim == 2 else float(sigma.sum())
@@ -462,7 +469,7 @@ class DynamicQPlus(AbstractSolver):
             return SolverOutput(x, Status.ERROR, "non-finite f, gradient or constraint at x0", nit=0)
         # [OWN] fixed scaling from x0: constraints by 1/||grad|| where it exceeds 1 (as dynamic-q's
         # 'cap' normalization) and f likewise, so mu and the QP are well scaled (e.g. HS106)
-        sf = 1.0 / max(1.0, float(np.linalg.norm(ev0["g"])))
+        sf = _objective_scale(ev0["g"])
         sg = 1.0 / np.maximum(np.linalg.norm(ev0["ineq_jac"], axis=1), 1.0)
         sh = 1.0 / np.maximum(np.linalg.norm(ev0["eq_jac"], axis=1), 1.0)
 
