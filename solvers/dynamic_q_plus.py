@@ -197,8 +197,8 @@ class DynamicQPlus(AbstractSolver):
                                     "multipliers need when it has grown past 100x that and the step uses no slacks "
                                     "(the step is the same for any weight above the multipliers; only the merit "
                                     "changes). Off: it solves 3 more CUTEst problems and keeps every 3-RPR enclosure, "
-                                    "but MESH's iterates then run off (f -7e22 at violation 1e10; docs/thesis_solvers.md)",
-                                    "[OWN]")
+                                    "but MESH's iterates then run off (f -7e22 at violation 1e10; "
+                                    "docs/thesis_solvers.md)", "[OWN]")
     scale_spread: float = option(100.0, "work in y = x / s, s_i = max(1, |x0_i|), when the largest s_i is over this "
                                  "many times the smallest (variables of different orders of magnitude); "
                                  "inf: never, 1: always", "[OWN]")
