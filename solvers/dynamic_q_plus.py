@@ -167,7 +167,8 @@ class DynamicQPlus(AbstractSolver):
     eps_kkt: float = option(0.1, "a stopping test ends the run only where the unit model's step (x in units of "
                             "1 + ||x||_inf, f in units of 1 + |f|, every curvature 1, box [-1, 1]; r ||grad f||_inf "
                             "/ (1 + |f|) capped at 1 away from constraints) is below this; otherwise the model is "
-                            "reset to that one, at most once per point; inf: no check", "[OWN]")
+                            "reset to that one (again at the same point only after a trial from it, with the "
+                            "move limit the rejections left); inf: no check", "[OWN]")
     eta: float = option(0.1, "accept a step when actual / predicted merit reduction >= eta", "[OWN] trust region")
     shrink: float = option(0.3, "on rejection rho = shrink * ||d||_inf", "[OWN] trust region")
     sigma_min: float = option(1e-12, "lower safeguard on the curvatures (eigenvalues of the BFGS matrix, of the "
@@ -499,7 +500,7 @@ class DynamicQPlus(AbstractSolver):
         mu = float(self.mu0)
         log: list[dict[str, Any]] = []
         n_rej = 0
-        n_reset, x_reset = 0, None  # [OWN] resets to the unit model by the stationarity check, at most one per point
+        n_reset, x_reset = 0, None  # [OWN] resets to the unit model by the stationarity check, and where the last was
         restarted, s_last = False, 1.0  # [OWN] one restart of the quasi-Newton matrix before stopping
         recent: list[dict[str, Any]] = [ev]  # [OWN] non-monotone reference: last accepted points
         for it in range(1, self.max_iter + 1):
@@ -571,8 +572,14 @@ class DynamicQPlus(AbstractSolver):
                     sigma, restarted = self._spherical_restart(s_last, oracle.n), True
                     continue
                 chi = self._stationarity(ev, x, lo, up, res, sf)
-                if chi > self.eps_kkt and x is not x_reset:
-                    sigma, rho = self._unit_model(ev, x, sf, oracle.n), max(rho, chi * xs)
+                # [OWN] a point far from stationary: reset to the unit model (item 13).  Again at the
+                # same point once a trial has been evaluated since (item 16), with the move limit
+                # as the rejections left it, so the run is a trust region on that model until a
+                # step is accepted or the limit collapses (with none, the same point would repeat)
+                if chi > self.eps_kkt and (x is not x_reset or n_upd > 0):
+                    if x is not x_reset:
+                        rho = max(rho, chi * xs)
+                    sigma = self._unit_model(ev, x, sf, oracle.n)
                     n_upd, n_reset, x_reset = 0, n_reset + 1, x
                     continue
                 return SolverOutput(x, Status.CONVERGED, "feasible and step / predicted reduction below tolerance",

@@ -348,6 +348,17 @@ def test_no_stop_at_a_point_far_from_stationary():
     assert r.extra["n_reset"] >= 1 and r.extra["unit_model_step"] <= 0.1
 
 
+def test_reset_again_at_the_same_point_after_a_rejected_trial():
+    """MISRA1ALS (S2MPJ, least squares, optimum 0.124551): at f = 19.51 the reset's first trial
+    is rejected, the model updated from it gives a tiny step again, and with one reset per point
+    the run stopped there (18 N^fg, unit-model step 1).  The reset is now repeated at that point
+    with the shrunk move limit until a step is accepted (item 16), and the run reaches the
+    optimum."""
+    r = solve(_s2mpj("MISRA1ALS"), "dynamic-q-plus")
+    assert r.status == "converged" and r.f == pytest.approx(0.124551, rel=1e-5)
+    assert r.extra["n_reset"] >= 2
+
+
 @settings(max_examples=60, deadline=None)
 @given(st.integers(0, 10_000), st.integers(1, 5), st.integers(0, 3), st.integers(0, 2), st.booleans())
 def test_unit_model_step_bound_is_an_upper_bound(seed, n, p, q, bounded):
