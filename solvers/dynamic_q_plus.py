@@ -164,7 +164,7 @@ class DynamicQPlus(AbstractSolver):
                            "thesis's test (3.11), guarded); 0: off (1e-9 until item 15 of docs/thesis_solvers.md: "
                            "it ended runs crossing a plateau)", "[OWN]; (3.11)")
     eps_c: float = option(1e-7, "feasibility: every constraint violation <= eps_c", "[OWN]")
-    eps_kkt: float = option(0.1, "a stopping test ends the run only where the unit model's step (x in units of "
+    eps_kkt: float = option(0.01, "a stopping test ends the run only where the unit model's step (x in units of "
                             "1 + ||x||_inf, f in units of 1 + |f|, every curvature 1, box [-1, 1]; r ||grad f||_inf "
                             "/ (1 + |f|) capped at 1 away from constraints) is below this; otherwise the model is "
                             "reset to that one (again at the same point only after a trial from it, with the "

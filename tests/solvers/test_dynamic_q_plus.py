@@ -359,6 +359,17 @@ def test_reset_again_at_the_same_point_after_a_rejected_trial():
     assert r.extra["n_reset"] >= 2
 
 
+def test_stationarity_check_at_a_hundredth():
+    """PALMER2B (S2MPJ, least squares, optimum 0.623267): the run stops at f = 11.96 where the unit
+    model's step is 0.04, a point the check let pass at its former threshold 0.1; at the
+    default 0.01 the model is reset there and the run reaches the optimum (item 16)."""
+    p = _s2mpj("PALMER2B")
+    loose = solve(p, "dynamic-q-plus", eps_kkt=0.1)
+    assert loose.status == "converged" and loose.f > 10.0 and loose.extra["unit_model_step"] > 0.01
+    r = solve(p, "dynamic-q-plus")
+    assert r.status == "converged" and r.f == pytest.approx(0.623267, rel=1e-5)
+
+
 @settings(max_examples=60, deadline=None)
 @given(st.integers(0, 10_000), st.integers(1, 5), st.integers(0, 3), st.integers(0, 2), st.booleans())
 def test_unit_model_step_bound_is_an_upper_bound(seed, n, p, q, bounded):
