@@ -194,12 +194,11 @@ class DynamicQPlus(AbstractSolver):
     steering: bool = option(True, "raise the penalty weight until the step achieves at least a tenth of the "
                             "linearized infeasibility reduction the move limit allows (one more QP, only while "
                             "the elastic slacks are in use)", "[OWN] Byrd-Nocedal-Waltz steering rule")
-    penalty_decrease: bool = option(False, "at a feasible point, lower the penalty weight to 10x what the "
+    penalty_decrease: bool = option(True, "at a feasible point, lower the penalty weight to 10x what the "
                                     "multipliers need when it has grown past 100x that and the step uses no slacks "
                                     "(the step is the same for any weight above the multipliers; only the merit "
-                                    "changes). Off: it solves 3 more CUTEst problems and keeps every 3-RPR enclosure, "
-                                    "but MESH's iterates then run off (f -7e22 at violation 1e10; "
-                                    "docs/thesis_solvers.md)", "[OWN]")
+                                    "changes); once raised past a lowered value, it is not lowered again in the run. "
+                                    "False: never lowered (before item 17 of docs/thesis_solvers.md)", "[OWN]")
     scale_spread: float = option(100.0, "work in y = x / s, s_i = max(1, |x0_i|), when the largest s_i is over this "
                                  "many times the smallest (variables of different orders of magnitude); "
                                  "inf: never, 1: always", "[OWN]")
@@ -498,6 +497,7 @@ class DynamicQPlus(AbstractSolver):
         # P[0]: no curvature information yet (the thesis' P[0] is linear)
         sigma: Any = np.eye(oracle.n) if self.curvature == "bfgs" else np.ones(oracle.n)
         mu = float(self.mu0)
+        mu_lowered = math.inf  # [OWN] the weight the last decrease set; raised past it, never lowered again
         log: list[dict[str, Any]] = []
         n_rej = 0
         n_reset, x_reset = 0, None  # [OWN] resets to the unit model by the stationarity check, and where the last was
@@ -524,13 +524,14 @@ class DynamicQPlus(AbstractSolver):
                 mu = 2.0 * mult
                 res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
                                        d_lo, d_up, mu)
-            elif (self.penalty_decrease and res.elastic <= self.eps_c and ev["viol"] <= self.eps_c
-                  and mu > 100.0 * max(float(self.mu0), 2.0 * mult)):
-                # [OWN] option: lower an overgrown weight.  Steering can raise mu by 1e4 far from the
-                # solution; kept there, the merit rejects every plain step whose violation is 1e-8
-                # (DEMBO7: on the cap at f = 228, optimum 175).  With no slacks in use and mu above the
-                # multipliers the QP step does not depend on mu, so only the merit changes
-                mu = 10.0 * max(float(self.mu0), 2.0 * mult)
+            elif (self.penalty_decrease and mu <= mu_lowered and res.elastic <= self.eps_c
+                  and ev["viol"] <= self.eps_c and mu > 100.0 * max(float(self.mu0), 2.0 * mult)):
+                # [OWN] lower an overgrown weight.  Steering can raise mu by 1e4 far from the solution;
+                # kept there, the merit rejects every plain step whose violation is 1e-8 (DEMBO7: on
+                # the cap at f = 228, optimum 175).  With no slacks in use and mu above the multipliers
+                # the QP step does not depend on mu, so only the merit changes.  Not again once mu has
+                # had to rise past the lowered value (3-RPR MO P1 cycled 2.8e5 -> 100 -> 2.8e5 to the cap)
+                mu = mu_lowered = 10.0 * max(float(self.mu0), 2.0 * mult)
             if self.steering and res.elastic > self.eps_c and mu < MU_MAX:
                 res, mu = self._steer(res, mu, ev, sigma, d_lo, d_up)
             if self.constraint_curvature and (np.any(bq) or np.any(cq)):

@@ -146,15 +146,16 @@ def _s2mpj(name: str):
 def test_penalty_decrease_lowers_an_overgrown_weight():
     """DEMBO7 (S2MPJ): steering raises mu from 10 to 1e5 far from the solution, where every later
     point is feasible.  Kept there (the default), the merit rejects each plain step (violations of
-    1e-8 times mu) and the run ends on the cap at f = 228; with ``penalty_decrease`` the weight is
-    lowered once the steps use no slacks, and the run reaches the known optimum 174.787.  (Both
-    unscaled: by default DEMBO7's variables, 0.1 to 650 at x0, are scaled, and mu stays below 20.)"""
+    1e-8 times mu) and the run ends on the cap at f = 228 without ``penalty_decrease``; with it (the
+    default since item 17) the weight is lowered once the steps use no slacks, and the run reaches
+    the known optimum 174.787.  (Both unscaled: by default DEMBO7's variables, 0.1 to 650 at x0,
+    are scaled, and mu stays below 20.)"""
     p = _s2mpj("DEMBO7")
-    r = solve(p, "dynamic-q-plus", penalty_decrease=True, scale_spread=math.inf)
+    r = solve(p, "dynamic-q-plus", scale_spread=math.inf)
     mus = [it["mu"] for it in r.extra["iterations"]]
     assert max(mus) >= 1e4 and any(b < a for a, b in itertools.pairwise(mus))
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(174.787, rel=1e-5)
-    old = solve(p, "dynamic-q-plus", scale_spread=math.inf)
+    old = solve(p, "dynamic-q-plus", penalty_decrease=False, scale_spread=math.inf)
     old_mus = [it["mu"] for it in old.extra["iterations"]]
     assert all(b >= a for a, b in itertools.pairwise(old_mus)) and old.status == "max_iter"
 
@@ -346,6 +347,30 @@ def test_no_stop_at_a_point_far_from_stationary():
     r = solve(p, "dynamic-q-plus")
     assert r.status == "converged" and r.f == pytest.approx(0.0754647, rel=1e-5)
     assert r.extra["n_reset"] >= 1 and r.extra["unit_model_step"] <= 0.1
+
+
+def _lowered_again_after_rising(mus: list[float]) -> bool:
+    """Whether the weight was lowered from above a value an earlier decrease had set (mu only
+    rises otherwise, so it had risen past that value)."""
+    lowered = math.inf
+    for a, b in itertools.pairwise(mus):
+        if b < a:
+            if a > lowered:
+                return True
+            lowered = b
+    return False
+
+
+def test_penalty_weight_not_lowered_again_once_it_had_to_rise():
+    """HIMMELBJ (S2MPJ, 45 variables, 14 equalities): the weight is lowered at a feasible point
+    and has to rise again; lowered whenever the rule held, it went down three times (76 N^fg,
+    f = -1909.54); not lowered again once it had to rise past the lowered value (item 17), the
+    run ends at -1910.02."""
+    r = solve(_s2mpj("HIMMELBJ"), "dynamic-q-plus")
+    mus = [it["mu"] for it in r.extra["iterations"]]
+    assert any(b < a for a, b in itertools.pairwise(mus)) and not _lowered_again_after_rising(mus)
+    assert _lowered_again_after_rising([10.0, 1e5, 100.0, 1e4, 100.0])  # the check itself can fail
+    assert r.status == "converged" and r.max_violation <= 1e-6 and r.f < -1910.0
 
 
 def test_reset_again_at_the_same_point_after_a_rejected_trial():
