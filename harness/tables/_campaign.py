@@ -94,7 +94,7 @@ def classify_runs(runs: pd.DataFrame) -> pd.DataFrame:
     return df
 
 
-def _summary(df: pd.DataFrame, order: list[str]) -> Table:
+def _summary(df: pd.DataFrame, order: list[str], defaults: bool = True) -> Table:
     ran = df[df["outcome"] != "not applicable"]
     solved = ran[ran["outcome"] == "solved"]
     # commonly solved: cases every solver that ran on them solved
@@ -124,9 +124,10 @@ def _summary(df: pd.DataFrame, order: list[str]) -> Table:
     refs = df.drop_duplicates("case_id")["ref_source"].value_counts()
     notes = [
         f"Solved: returned point feasible (violation <= {FEAS_TOL:g}) and E^r <= {SOLVED_ER:g} against the case's "
-        "reference value (eq. 3.12); an infeasible end is never solved. Every solver ran with its defaults.",
-        "Reference values: " + ", ".join(f"{v} cases {k}" for k, v in refs.items()) + " ('best found': the best "
-        "feasible f any stored run reached, as in Moré-Wild data profiles).",
+        "reference value (eq. 3.12); an infeasible end is never solved. "
+        + ("Every solver ran with its defaults." if defaults else "Each solver ran with the suite's settings."),
+        "Reference values: " + ", ".join(f"{v} case{'s' * (v != 1)} {k}" for k, v in refs.items())
+        + " ('best found': the best feasible f any stored run reached, as in Moré-Wild data profiles).",
         f"Commonly solved: the {len(common)} cases that every solver which ran on them solved; medians of N^fg over "
         "them compare like with like.",
         "Outcomes: other point = feasible, converged elsewhere (a local minimum or a stop short of the reference); "
@@ -165,12 +166,13 @@ def _per_case(df: pd.DataFrame, order: list[str]) -> Table:
 
 
 def campaign_tables(runs: pd.DataFrame, solver_order: list[str] | None = None, prefix: str = "campaign",
-                    suite: str = "") -> list[Table]:
-    """The summary and per-run tables, named ``<prefix>_summary`` and ``<prefix>_runs``."""
+                    suite: str = "", defaults: bool = True) -> list[Table]:
+    """The summary and per-run tables, named ``<prefix>_summary`` and ``<prefix>_runs``;
+    ``defaults``: every solver ran at its defaults (the notes say so), as in cutest and hs-all."""
     df = classify_runs(runs)
     labels = list(dict.fromkeys(solver_order or [])) + sorted(set(df["label"]) - set(solver_order or []))
     labels = [lab for lab in labels if lab in set(df["label"])]
-    out = [_summary(df, labels), _per_case(df, labels)]
+    out = [_summary(df, labels, defaults), _per_case(df, labels)]
     for t in out:
         t.name = t.name.replace("campaign", prefix)
         t.title = f"{suite}: {t.title}" if suite else t.title

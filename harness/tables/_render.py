@@ -2,7 +2,8 @@
 
 A suite declares its plug-in: ``Suite(..., tables="harness.tables.rpr2")``, a module
 exposing ``tables(runs[, reference]) -> list[Table]`` (see `harness.tables._base`); a user
-suite file may define the same ``tables`` function.  Cells the plug-in flags (``Table.flags``) differ
+suite file may define the same ``tables`` function, and without one gets the campaign tables
+of `harness.tables._campaign`.  Cells the plug-in flags (``Table.flags``) differ
 from the thesis beyond the plug-in's stated tolerance and are marked with ``MARK``.
 """
 
@@ -38,11 +39,7 @@ def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[..., list[Ta
     """The ``tables`` function of the suite's plug-in (or of its suite file)."""
     if ref is not None and ref.file:
         fn = getattr(suite_module(ref), "tables", None)
-        if callable(fn):
-            return fn
-        raise NoTablePlugin(f"suite file {ref.file} defines no function tables(runs) -> list[Table]; add one to "
-                            "render tables of your suite (docs/user_problems.md). Profiles and the report work "
-                            "without it: python -m harness plot --kind profile")
+        return fn if callable(fn) else _library_tables(suite)
     from problems import UnknownSuite, get_suite
 
     try:
@@ -57,6 +54,18 @@ def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[..., list[Ta
     if not callable(fn):
         raise NoTablePlugin(f"{modname} defines no function tables(runs)")
     return fn
+
+
+def _library_tables(suite: str) -> Callable[[pd.DataFrame], list[Table]]:
+    """The tables of a suite file that defines no ``tables`` of its own: those of the library
+    campaigns cutest and hs-all (per-solver summary, every run's N^fg and outcome; a case's
+    reference is its ``f_ref`` or else the best feasible f any stored run reached)."""
+    from ._campaign import campaign_tables
+
+    def tables(runs: pd.DataFrame) -> list[Table]:
+        return campaign_tables(runs, prefix=suite.replace("-", "_"), suite=suite, defaults=False)
+
+    return tables
 
 
 def build_tables(suite: str, runs: pd.DataFrame, ref: SuiteRef | None = None,

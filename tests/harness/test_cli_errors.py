@@ -53,13 +53,22 @@ MINE = ("import numpy as np\nfrom problems import Problem\n"
         " gradient=lambda x: 2 * x, f_ref=0.0)]\n")
 
 
-def test_table_of_suite_file_without_tables_names_the_file(tmp_path, capsys):
+def test_suite_file_without_tables_gets_the_campaign_tables(tmp_path, capsys):
+    """A suite file with no ``tables`` of its own: `run` and `table` render the tables of the
+    library campaigns (summary, every run) instead of refusing."""
+    import pandas as pd
+
     f = tmp_path / "mine.py"
     f.write_text(MINE)
-    main(["run", "--suite-file", str(f), "--solvers", "sqsd", "--out", str(tmp_path), "--quiet"])
-    capsys.readouterr()
-    line = _one_line_error(capsys, 2, ["table", "--suite-file", str(f), "--out", str(tmp_path)])
-    assert "mine.py" in line and "harness/tables" not in line
+    assert main(["run", "--suite-file", str(f), "--solvers", "sqsd,scipy-bfgs", "--out", str(tmp_path),
+                 "--quiet"]) == 0
+    assert "mine: Per-solver summary of the campaign" in capsys.readouterr().out
+    summary = pd.read_csv(tmp_path / "mine" / "mine_summary.csv")
+    assert sorted(summary["solver"]) == ["scipy-bfgs", "sqsd"] and list(summary["solved"]) == [1, 1]
+    md = (tmp_path / "mine" / "mine_summary.md").read_text()
+    assert "1 case known optimum" in md and "Each solver ran with the suite's settings" in md
+    assert main(["table", "--suite-file", str(f), "--out", str(tmp_path)]) == 0
+    assert "| bowl/n=2/x0 |" in capsys.readouterr().out
 
 
 def test_report_out_missing(capsys):
