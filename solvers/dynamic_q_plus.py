@@ -185,6 +185,10 @@ class DynamicQPlus(AbstractSolver):
     constraint_curvature: bool = option(False, "correct the linearized constraints by their spherical curvatures "
                                         "(3.6) at the previous subproblem step length (second-order correction "
                                         "without oracle calls)", "[OWN]; eq. (3.6) [THESIS]")
+    stuck_curvature: bool = option(True, "while the QP step needs the elastic slacks (the linearized constraints "
+                                   "cannot be met within the move limit), correct the constraints by their "
+                                   "curvatures (3.6), as constraint_curvature does at every step",
+                                   "[OWN] item 18; eq. (3.6) [THESIS]")
     mu0: float = option(10.0, "initial l1 penalty weight (raised to 2 x the largest multiplier)", "[OWN]")
     second_order_correction: bool = option(True, "on a rejected step that raised the constraint violation, try "
                                            "one corrected step (one more oracle point)",
@@ -534,7 +538,11 @@ class DynamicQPlus(AbstractSolver):
                 mu = mu_lowered = 10.0 * max(float(self.mu0), 2.0 * mult)
             if self.steering and res.elastic > self.eps_c and mu < MU_MAX:
                 res, mu = self._steer(res, mu, ev, sigma, d_lo, d_up)
-            if self.constraint_curvature and (np.any(bq) or np.any(cq)):
+            # [OWN] item 18: while the step needs the slacks, the linearization alone may never restore
+            # feasibility (FLETCHER: a constraint whose gradient vanishes at x0; CRESC4: stuck at
+            # violation 1.5 while mu ran to its cap); with the curvatures (3.6) it can
+            stuck = self.stuck_curvature and res.elastic > self.eps_c
+            if (self.constraint_curvature or stuck) and (np.any(bq) or np.any(cq)):
                 # [OWN] the thesis's constraint curvatures (3.6) as a model-based second-order
                 # correction: g~_j(d) = g_j + grad g_j^T d + b_j/2 ||d||^2 with ||d|| frozen at the
                 # previous solution (fixed point, no oracle calls); keeps steps on curved
@@ -576,7 +584,7 @@ class DynamicQPlus(AbstractSolver):
                 # [OWN] a point far from stationary: reset to the unit model (item 13).  Again at the
                 # same point once a trial has been evaluated since (item 16), with the move limit
                 # as the rejections left it, so the run is a trust region on that model until a
-                # step is accepted or the limit collapses (with none, the same point would repeat)
+                # step is accepted or the limit collapses (a repeat needs a trial evaluated since)
                 if chi > self.eps_kkt and (x is not x_reset or n_upd > 0):
                     if x is not x_reset:
                         rho = max(rho, chi * xs)
@@ -624,7 +632,7 @@ class DynamicQPlus(AbstractSolver):
                 s = self._curvature(ev, evt, lam_new, nu_new, dx)
                 if s is not None and math.isfinite(s):
                     s_last = s
-            if ok and self.constraint_curvature:
+            if ok and (self.constraint_curvature or self.stuck_curvature) and (has_ineq or has_eq):
                 if ratio >= self.eta:  # eq. (3.6) at the new iterate xt from the old one
                     bq = two_point_curvature(ev["ineq"], evt["ineq"], evt["ineq_jac"], x - xt)
                     cq = two_point_curvature(ev["eq"], evt["eq"], evt["eq_jac"], x - xt)
