@@ -94,6 +94,14 @@ def _l1_infeas(ev: dict[str, Any]) -> float:
     return float(_sum(np.maximum(g, 0.0), axis=None) + _sum(np.abs(h), axis=None))
 
 
+def _constraint_curvatures(e_from: dict[str, Any], x_from: np.ndarray, e_at: dict[str, Any],
+                           x_at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Eq. (3.6) for every inequality and equality at ``x_at`` from the values at ``x_from``."""
+    dx = x_from - x_at
+    return (two_point_curvature(e_from["ineq"], e_at["ineq"], e_at["ineq_jac"], dx),
+            two_point_curvature(e_from["eq"], e_at["eq"], e_at["eq_jac"], dx))
+
+
 def _lagrangian_gradient_change(ev_old: dict[str, Any], ev_new: dict[str, Any], lam: np.ndarray,
                                 nu: np.ndarray) -> np.ndarray:
     """y = grad L(x_new) - grad L(x_old) at fixed multipliers, the empty blocks skipped (the same sum)."""
@@ -497,7 +505,8 @@ class DynamicQPlus(AbstractSolver):
         scale_x = max(1.0, float(np.abs(x).max(initial=0.0)))
         rho = float(self.rho) * scale_x
         n_upd = 0
-        bq, cq = np.zeros(oracle.n_ineq), np.zeros(oracle.n_eq)  # constraint curvatures (3.6)
+        # the last step's two points (values, x), for the constraint curvatures (3.6)
+        last_step: tuple[dict[str, Any], np.ndarray, dict[str, Any], np.ndarray] | None = None
         # P[0]: no curvature information yet (the thesis' P[0] is linear)
         sigma: Any = np.eye(oracle.n) if self.curvature == "bfgs" else np.ones(oracle.n)
         mu = float(self.mu0)
@@ -540,9 +549,13 @@ class DynamicQPlus(AbstractSolver):
                 res, mu = self._steer(res, mu, ev, sigma, d_lo, d_up)
             # [OWN] item 18: while the step needs the slacks, the linearization alone may never restore
             # feasibility (FLETCHER: a constraint whose gradient vanishes at x0; CRESC4: stuck at
-            # violation 1.5 while mu ran to its cap); with the curvatures (3.6) it can
+            # violation 1.5 while mu ran to its cap); with the curvatures (3.6) it can.  They are
+            # computed only here, where used (a few microseconds per iteration otherwise)
             stuck = self.stuck_curvature and res.elastic > self.eps_c
-            if (self.constraint_curvature or stuck) and (np.any(bq) or np.any(cq)):
+            curv = (_constraint_curvatures(*last_step) if (self.constraint_curvature or stuck) and last_step
+                    else None)
+            if curv is not None and (np.any(curv[0]) or np.any(curv[1])):
+                bq, cq = curv
                 # [OWN] the thesis's constraint curvatures (3.6) as a model-based second-order
                 # correction: g~_j(d) = g_j + grad g_j^T d + b_j/2 ||d||^2 with ||d|| frozen at the
                 # previous solution (fixed point, no oracle calls); keeps steps on curved
@@ -633,12 +646,9 @@ class DynamicQPlus(AbstractSolver):
                 if s is not None and math.isfinite(s):
                     s_last = s
             if ok and (self.constraint_curvature or self.stuck_curvature) and (has_ineq or has_eq):
-                if ratio >= self.eta:  # eq. (3.6) at the new iterate xt from the old one
-                    bq = two_point_curvature(ev["ineq"], evt["ineq"], evt["ineq_jac"], x - xt)
-                    cq = two_point_curvature(ev["eq"], evt["eq"], evt["eq_jac"], x - xt)
-                else:  # the iterate stays: (3.6) at x from the rejected trial point
-                    bq = two_point_curvature(evt["ineq"], ev["ineq"], ev["ineq_jac"], xt - x)
-                    cq = two_point_curvature(evt["eq"], ev["eq"], ev["eq_jac"], xt - x)
+                # eq. (3.6) at the new iterate xt from the old one, or, the iterate staying, at x from
+                # the rejected trial point
+                last_step = (ev, x, evt, xt) if ratio >= self.eta else (evt, xt, ev, x)
             if ratio >= self.eta:
                 # [OWN] whether this step came from a model with curvature information: the first one
                 # comes from P[0] = I, whose scale is arbitrary, so a small change of f along it says
