@@ -193,9 +193,9 @@ class DynamicQPlus(AbstractSolver):
     constraint_curvature: bool = option(False, "correct the linearized constraints by their spherical curvatures "
                                         "(3.6) at the previous subproblem step length (second-order correction "
                                         "without oracle calls)", "[OWN]; eq. (3.6) [THESIS]")
-    stuck_curvature: bool = option(True, "while the QP step needs the elastic slacks (the linearized constraints "
-                                   "cannot be met within the move limit), correct the constraints by their "
-                                   "curvatures (3.6), as constraint_curvature does at every step",
+    stuck_curvature: bool = option(True, "where the QP step removes less than a tenth of the linearized l1 "
+                                   "infeasibility (the linearization cannot restore feasibility), correct the "
+                                   "constraints by their curvatures (3.6), as constraint_curvature does at every step",
                                    "[OWN] item 18; eq. (3.6) [THESIS]")
     mu0: float = option(10.0, "initial l1 penalty weight (raised to 2 x the largest multiplier)", "[OWN]")
     second_order_correction: bool = option(True, "on a rejected step that raised the constraint violation, try "
@@ -547,11 +547,15 @@ class DynamicQPlus(AbstractSolver):
                 mu = mu_lowered = 10.0 * max(float(self.mu0), 2.0 * mult)
             if self.steering and res.elastic > self.eps_c and mu < MU_MAX:
                 res, mu = self._steer(res, mu, ev, sigma, d_lo, d_up)
-            # [OWN] item 18: while the step needs the slacks, the linearization alone may never restore
-            # feasibility (FLETCHER: a constraint whose gradient vanishes at x0; CRESC4: stuck at
-            # violation 1.5 while mu ran to its cap); with the curvatures (3.6) it can.  They are
-            # computed only here, where used (a few microseconds per iteration otherwise)
-            stuck = self.stuck_curvature and res.elastic > self.eps_c
+            # [OWN] item 18: where the step removes less than a tenth of the linearized infeasibility
+            # (the steering rule's test), the linearization cannot restore feasibility (FLETCHER: a
+            # constraint whose gradient vanishes at x0; CRESC4: stuck at violation 1.5 while mu ran
+            # to its cap); with the curvatures (3.6) it can.  Not wherever the slacks are in use:
+            # that also bent steps the move limit merely cut (2-RPR E, LUKVLE11, LUKVLE17 ended
+            # higher).  The curvatures are computed only here, where used
+            stuck = (self.stuck_curvature and res.elastic > self.eps_c
+                     and ev["l1"] - sum(linearized_violations(res.d, ev["ineq"], ev["ineq_jac"], ev["eq"],
+                                                              ev["eq_jac"])) < 0.1 * ev["l1"])
             curv = (_constraint_curvatures(*last_step) if (self.constraint_curvature or stuck) and last_step
                     else None)
             if curv is not None and (np.any(curv[0]) or np.any(curv[1])):

@@ -149,14 +149,13 @@ def test_penalty_decrease_lowers_an_overgrown_weight():
     1e-8 times mu) and the run ends on the cap at f = 228 without ``penalty_decrease``; with it (the
     default since item 17) the weight is lowered once the steps use no slacks, and the run reaches
     the known optimum 174.787.  (Both unscaled: by default DEMBO7's variables, 0.1 to 650 at x0,
-    are scaled, and mu stays below 20.)  Item 18's curvature correction off in both runs: with it,
-    the run without the decrease also ends before the cap (at 175.07), so the test isolates item 17."""
+    are scaled, and mu stays below 20.)"""
     p = _s2mpj("DEMBO7")
-    r = solve(p, "dynamic-q-plus", scale_spread=math.inf, stuck_curvature=False)
+    r = solve(p, "dynamic-q-plus", scale_spread=math.inf)
     mus = [it["mu"] for it in r.extra["iterations"]]
     assert max(mus) >= 1e4 and any(b < a for a, b in itertools.pairwise(mus))
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(174.787, rel=1e-5)
-    old = solve(p, "dynamic-q-plus", penalty_decrease=False, scale_spread=math.inf, stuck_curvature=False)
+    old = solve(p, "dynamic-q-plus", penalty_decrease=False, scale_spread=math.inf)
     old_mus = [it["mu"] for it in old.extra["iterations"]]
     assert all(b >= a for a, b in itertools.pairwise(old_mus)) and old.status == "max_iter"
 
@@ -165,8 +164,9 @@ def test_penalty_decrease_lowers_an_overgrown_weight():
 def test_constraint_curvature_restores_feasibility_where_the_linearization_cannot(name, f_opt):
     """Item 18.  FLETCHER: at x0 a constraint's gradient vanishes, so its linearization cannot be
     met and the run stopped infeasible after 3 points; CRESC4: the steps stalled at violation 1.5
-    while mu ran to its cap.  While the step needs the elastic slacks, the constraints are
-    corrected by their curvatures (3.6), and both reach the best known f feasibly."""
+    while mu ran to its cap.  Where the step removes less than a tenth of the linearized
+    infeasibility, the constraints are corrected by their curvatures (3.6), and both reach the
+    best known f feasibly."""
     p = _s2mpj(name)
     r = solve(p, "dynamic-q-plus")
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(f_opt, rel=1e-6)
@@ -287,14 +287,12 @@ def test_scaled_variables_follow_the_chain_rule():
 def test_variables_scaled_only_when_their_magnitudes_differ_by_orders():
     """hs106's start spans 150..5000 (a factor 33 < 100): the default run is the unscaled one,
     bitwise.  S2MPJ's HS116 spans 0.1..650 (factor 650): scaled, the run reaches the known
-    optimum 97.5875; unscaled (and without item 18's curvature correction, which reaches the optimum
-    unscaled too) it stops at 97.5910, a point where SLSQP also stops."""
+    optimum 97.5875; unscaled it stops at 97.5910, a point where SLSQP also stops."""
     p = hs.problem("106")
     a, b = solve(p, "dynamic-q-plus"), solve(p, "dynamic-q-plus", scale_spread=math.inf)
     assert a.nfg == b.nfg and np.array_equal(a.x, b.x)
     q = _s2mpj("HS116")
-    scaled = solve(q, "dynamic-q-plus")
-    plain = solve(q, "dynamic-q-plus", scale_spread=math.inf, stuck_curvature=False)
+    scaled, plain = solve(q, "dynamic-q-plus"), solve(q, "dynamic-q-plus", scale_spread=math.inf)
     assert scaled.max_violation <= 1e-6 and scaled.f == pytest.approx(97.5875, rel=1e-5)
     assert plain.f > 97.59
     assert np.all(scaled.x >= q.lower) and np.all(scaled.x <= q.upper)
@@ -381,9 +379,8 @@ def test_penalty_weight_not_lowered_again_once_it_had_to_rise():
     """HIMMELBJ (S2MPJ, 45 variables, 14 equalities): the weight is lowered at a feasible point
     and has to rise again; lowered whenever the rule held, it went down three times (76 N^fg,
     f = -1909.54); not lowered again once it had to rise past the lowered value (item 17), the
-    run ends at -1910.02 (item 18's curvature correction off, to isolate item 17: with it, the run
-    ends at -1909.99)."""
-    r = solve(_s2mpj("HIMMELBJ"), "dynamic-q-plus", stuck_curvature=False)
+    run ends at -1910.02."""
+    r = solve(_s2mpj("HIMMELBJ"), "dynamic-q-plus")
     mus = [it["mu"] for it in r.extra["iterations"]]
     assert any(b < a for a, b in itertools.pairwise(mus)) and not _lowered_again_after_rising(mus)
     assert _lowered_again_after_rising([10.0, 1e5, 100.0, 1e4, 100.0])  # the check itself can fail
