@@ -102,6 +102,20 @@ def _constraint_curvatures(e_from: dict[str, Any], x_from: np.ndarray, e_at: dic
             two_point_curvature(e_from["eq"], e_at["eq"], e_at["eq_jac"], dx))
 
 
+def _linearized_infeasibility(d: np.ndarray, ev: dict[str, Any]) -> float:
+    """The l1 infeasibility of the constraints linearized at ``ev``'s point, at the step d."""
+    ineq, eq = linearized_violations(d, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"])
+    return ineq + eq
+
+
+def _removes_a_tenth(d: np.ndarray, ev: dict[str, Any]) -> bool:
+    """Whether the step d removes at least a tenth of the linearized l1 infeasibility: the test of
+    the steering rule (`DynamicQPlus._steer`) and, failed while the slacks are in use, the
+    condition of item 18's curvature correction."""
+    l0 = ev["l1"]
+    return l0 - _linearized_infeasibility(d, ev) >= 0.1 * l0
+
+
 def _lagrangian_gradient_change(ev_old: dict[str, Any], ev_new: dict[str, Any], lam: np.ndarray,
                                 nu: np.ndarray) -> np.ndarray:
     """y = grad L(x_new) - grad L(x_old) at fixed multipliers, the empty blocks skipped (the same sum)."""
@@ -343,19 +357,15 @@ class DynamicQPlus(AbstractSolver):
         reduction is at most the current infeasibility, so a step that already removes a tenth
         of that passes without the feasibility QP (the same step and mu, one QP fewer).
         """
-        def lin_infeas(d: np.ndarray) -> float:
-            ineq, eq = linearized_violations(d, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"])
-            return ineq + eq
-
-        l0 = ev["l1"]
-        if l0 - lin_infeas(res.d) >= 0.1 * l0:
+        if _removes_a_tenth(res.d, ev):
             return res, mu
         feas = solve_elastic_qp(np.zeros_like(ev["g"]), sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
                                 d_lo, d_up, 1e6)
         if not feas.ok:
             return res, mu
-        ideal = l0 - lin_infeas(feas.d)
-        while ideal > 0.0 and l0 - lin_infeas(res.d) < 0.1 * ideal and mu < MU_MAX:
+        l0 = ev["l1"]
+        ideal = l0 - _linearized_infeasibility(feas.d, ev)
+        while ideal > 0.0 and l0 - _linearized_infeasibility(res.d, ev) < 0.1 * ideal and mu < MU_MAX:
             mu *= 10.0
             new = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
             if not new.ok:
@@ -553,9 +563,7 @@ class DynamicQPlus(AbstractSolver):
             # to its cap); with the curvatures (3.6) it can.  Not wherever the slacks are in use:
             # that also bent steps the move limit merely cut (2-RPR E, LUKVLE11, LUKVLE17 ended
             # higher).  The curvatures are computed only here, where used
-            stuck = (self.stuck_curvature and res.elastic > self.eps_c
-                     and ev["l1"] - sum(linearized_violations(res.d, ev["ineq"], ev["ineq_jac"], ev["eq"],
-                                                              ev["eq_jac"])) < 0.1 * ev["l1"])
+            stuck = self.stuck_curvature and res.elastic > self.eps_c and not _removes_a_tenth(res.d, ev)
             curv = (_constraint_curvatures(*last_step) if (self.constraint_curvature or stuck) and last_step
                     else None)
             if curv is not None and (np.any(curv[0]) or np.any(curv[1])):
