@@ -135,13 +135,13 @@ def test_code_version_follows_the_import_closure(tmp_path):
     assert not any(n.startswith("manipulators") or "lfopc" in n for n in sqsd)
     f = tmp_path / "suite.py"
     f.write_text("A = 1\n")
-    v1 = code_version(("solvers.sqsd",), (str(mine_file),))
-    assert code_version(("solvers.sqsd",), (str(mine_file),)) == v1
+    v1 = code_version(("solvers.sqsd",), (str(f),))
+    assert code_version(("solvers.sqsd",), (str(f),)) == v1
     f.write_text("A = 2\n")
     import os
 
     os.utime(f, (1, 1))  # a new mtime, as an edit gives
-    assert code_version(("solvers.sqsd",), (str(mine_file),)) != v1
+    assert code_version(("solvers.sqsd",), (str(f),)) != v1
 
 
 def test_name_registries_are_followed_but_not_hashed(monkeypatch):
