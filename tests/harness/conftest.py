@@ -8,3 +8,16 @@ TINY = str(pathlib.Path(__file__).with_name("tiny_suite.py"))
 @pytest.fixture
 def tiny_file():
     return TINY
+
+
+MINE = ("import numpy as np\nfrom problems import Problem\n"
+        "PROBLEMS = [Problem(name='bowl', x0=[1.0, 2.0], objective=lambda x: float(x @ x),"
+        " gradient=lambda x: 2 * x, f_ref=0.0)]\n")
+
+
+@pytest.fixture
+def mine_file(tmp_path):
+    """A user's suite file defining PROBLEMS only (no SOLVERS, no tables)."""
+    f = tmp_path / "mine.py"
+    f.write_text(MINE)
+    return f

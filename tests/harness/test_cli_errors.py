@@ -48,29 +48,6 @@ def test_suite_file_raising_at_import(tmp_path, capsys):
     assert "line 3" in line and "boom" in line
 
 
-MINE = ("import numpy as np\nfrom problems import Problem\n"
-        "PROBLEMS = [Problem(name='bowl', x0=[1.0, 2.0], objective=lambda x: float(x @ x),"
-        " gradient=lambda x: 2 * x, f_ref=0.0)]\n")
-
-
-def test_suite_file_without_tables_gets_the_campaign_tables(tmp_path, capsys):
-    """A suite file with no ``tables`` of its own: `run` and `table` render the tables of the
-    library campaigns (summary, every run) instead of refusing."""
-    import pandas as pd
-
-    f = tmp_path / "mine.py"
-    f.write_text(MINE)
-    assert main(["run", "--suite-file", str(f), "--solvers", "sqsd,scipy-bfgs", "--out", str(tmp_path),
-                 "--quiet"]) == 0
-    assert "mine: Per-solver summary of the campaign" in capsys.readouterr().out
-    summary = pd.read_csv(tmp_path / "mine" / "mine_summary.csv")
-    assert sorted(summary["solver"]) == ["scipy-bfgs", "sqsd"] and list(summary["solved"]) == [1, 1]
-    md = (tmp_path / "mine" / "mine_summary.md").read_text()
-    assert "1 case known optimum" in md and "Each solver ran with the suite's settings" in md
-    assert main(["table", "--suite-file", str(f), "--out", str(tmp_path)]) == 0
-    assert "| bowl/n=2/x0 |" in capsys.readouterr().out
-
-
 def test_report_out_missing(capsys):
     assert "does not exist" in _one_line_error(capsys, 2, ["report", "--out", "/nonexistent/results"])
 
@@ -92,12 +69,3 @@ def test_compare_exit_codes_distinguish_regressions_from_failures(tmp_path, caps
     capsys.readouterr()
     line = _one_line_error(capsys, 3, ["compare", str(a), str(b)])
     assert "repair" in line
-
-
-def test_suite_file_without_solvers_runs_every_solver_that_handles_it(tmp_path, capsys):
-    f = tmp_path / "mine.py"
-    f.write_text(MINE)
-    assert main(["run", "--suite-file", str(f), "--out", str(tmp_path), "--quiet", "--jobs", "2"]) == 0
-    runs = Store(tmp_path, "mine").load()
-    assert {"sqsd", "dynamic-q", "scipy-bfgs", "ipopt"} <= set(runs["solver"])
-    assert (runs["status"] != "not_applicable").all()

@@ -231,3 +231,30 @@ def test_prune_keeps_exactly_what_a_run_would_produce(tiny_file, tmp_path):
     assert sorted(after["run_key"]) == sorted(before["run_key"])
     assert prune_suite(suite_file=tiny_file, out=tmp_path) == {}  # nothing left to remove
     assert run(tiny_file, tmp_path).executed == 0  # still a complete store for resume
+
+
+def test_suite_file_without_tables_gets_the_campaign_tables(mine_file, tmp_path, capsys):
+    """A suite file with no ``tables`` of its own: `run` and `table` render the tables of the
+    library campaigns (summary, every run) instead of refusing."""
+    assert main(["run", "--suite-file", str(mine_file), "--solvers", "sqsd,scipy-bfgs", "--out", str(tmp_path),
+                 "--quiet"]) == 0
+    assert "mine: Per-solver summary of the campaign" in capsys.readouterr().out
+    summary = pd.read_csv(tmp_path / "mine" / "mine_summary.csv")
+    assert sorted(summary["solver"]) == ["scipy-bfgs", "sqsd"] and list(summary["solved"]) == [1, 1]
+    md = (tmp_path / "mine" / "mine_summary.md").read_text()
+    assert "1 case known optimum" in md and "Each solver ran with the suite's settings" in md
+    assert main(["table", "--suite-file", str(mine_file), "--out", str(tmp_path)]) == 0
+    assert "| bowl/n=2/x0 |" in capsys.readouterr().out
+
+
+def test_suite_file_without_solvers_runs_every_solver_that_handles_it(mine_file, tmp_path, capsys, monkeypatch):
+    """Every registered solver, as in a fresh process: without the patch the solvers that
+    other tests register in this process (bad_solvers.py's, one of which never returns)
+    would run too, each up to the 600 s time limit."""
+    from solvers._registry import REGISTRY
+
+    monkeypatch.setattr(REGISTRY, "_user", {})
+    assert main(["run", "--suite-file", str(mine_file), "--out", str(tmp_path), "--quiet", "--jobs", "2"]) == 0
+    runs = Store(tmp_path, "mine").load()
+    assert {"sqsd", "dynamic-q", "scipy-bfgs", "ipopt"} <= set(runs["solver"])
+    assert (runs["status"] != "not_applicable").all()
