@@ -149,6 +149,7 @@ class _ScaledVariables:
         self.lower, self.upper = oracle.lower / s, oracle.upper / s
         self.x0 = oracle.x0 / s
         self.n, self.n_ineq, self.n_eq = oracle.n, oracle.n_ineq, oracle.n_eq
+        self.exact_constraint_jacobians = oracle.exact_constraint_jacobians
 
     def evaluate(self, y: np.ndarray) -> dict[str, Any]:
         s = self._s
@@ -211,6 +212,12 @@ class DynamicQPlus(AbstractSolver):
                                    "infeasibility (the linearization cannot restore feasibility), correct the "
                                    "constraints by their curvatures (3.6), as constraint_curvature does at every step",
                                    "[OWN] item 18; eq. (3.6) [THESIS]")
+    rise_curvature: bool = option(True, "after a trial whose plain step was rejected with the constraint violation "
+                                  "risen (the linearization missed the constraints' curvature; the trigger of the "
+                                  "second-order correction), correct the next QP's constraints by their curvatures "
+                                  "(3.6), as constraint_curvature does at every step; only with exact constraint "
+                                  "Jacobians (none from finite differences)",
+                                  "[OWN] item 19; eq. (3.6) [THESIS]")
     mu0: float = option(10.0, "initial l1 penalty weight (raised to 2 x the largest multiplier)", "[OWN]")
     second_order_correction: bool = option(True, "on a rejected step that raised the constraint violation, try "
                                            "one corrected step (one more oracle point)",
@@ -526,6 +533,10 @@ class DynamicQPlus(AbstractSolver):
         n_reset, x_reset = 0, None  # [OWN] resets to the unit model by the stationarity check, and where the last was
         restarted, s_last = False, 1.0  # [OWN] one restart of the quasi-Newton matrix before stopping
         recent: list[dict[str, Any]] = [ev]  # [OWN] non-monotone reference: last accepted points
+        risen = False  # [OWN] item 19: the last trial's plain step was rejected with the violation risen
+        # item 19 needs exact Jacobians: (3.6)'s error from a finite-difference Jacobian is the
+        # difference error over the step length, as large as the curvature itself on short steps
+        rise_curvature = self.rise_curvature and oracle.exact_constraint_jacobians
         for it in range(1, self.max_iter + 1):
             d_lo, d_up = np.maximum(lo - x, -rho), np.minimum(up - x, rho)  # simple bounds (3.7), move limit (3.8)
             res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
@@ -564,8 +575,11 @@ class DynamicQPlus(AbstractSolver):
             # that also bent steps the move limit merely cut (2-RPR E, LUKVLE11, LUKVLE17 ended
             # higher).  The curvatures are computed only here, where used
             stuck = self.stuck_curvature and res.elastic > self.eps_c and not _removes_a_tenth(res.d, ev)
-            curv = (_constraint_curvatures(*last_step) if (self.constraint_curvature or stuck) and last_step
-                    else None)
+            # [OWN] item 19: likewise after a trial whose violation rose against the linearization's
+            # prediction (TENBARS3: a plain step rejected and a second-order correction accepted, in
+            # turn, for 1000 iterations; TRO3X3)
+            correct = self.constraint_curvature or stuck or (rise_curvature and risen)
+            curv = _constraint_curvatures(*last_step) if correct and last_step else None
             if curv is not None and (np.any(curv[0]) or np.any(curv[1])):
                 bq, cq = curv
                 # [OWN] the thesis's constraint curvatures (3.6) as a model-based second-order
@@ -634,7 +648,8 @@ class DynamicQPlus(AbstractSolver):
             phi_ref = max(phi, max([e["f"] + mu * e["l1"] for e in recent]))
             ratio = (phi_ref - phit) / pred
             n_soc_step = 0
-            if (self.second_order_correction and ok and ratio < self.eta and evt["l1"] > ev["l1"]):
+            risen = ok and ratio < self.eta and evt["l1"] > ev["l1"]
+            if self.second_order_correction and risen:
                 # [OWN] second-order correction (Fletcher 1982): the linearization at x shifted to the
                 # constraint values at the trial point, so the corrected step follows curved constraints
                 # where the l1 merit rejected the plain one (Maratos effect; HS27, HS47).  One more point.
@@ -657,7 +672,7 @@ class DynamicQPlus(AbstractSolver):
                 s = self._curvature(ev, evt, lam_new, nu_new, dx)
                 if s is not None and math.isfinite(s):
                     s_last = s
-            if ok and (self.constraint_curvature or self.stuck_curvature) and (has_ineq or has_eq):
+            if ok and (self.constraint_curvature or self.stuck_curvature or rise_curvature) and (has_ineq or has_eq):
                 # eq. (3.6) at the new iterate xt from the old one, or, the iterate staying, at x from
                 # the rejected trial point
                 last_step = (ev, x, evt, xt) if ratio >= self.eta else (evt, xt, ev, x)

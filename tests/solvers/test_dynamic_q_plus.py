@@ -155,7 +155,8 @@ def test_penalty_decrease_lowers_an_overgrown_weight():
     mus = [it["mu"] for it in r.extra["iterations"]]
     assert max(mus) >= 1e4 and any(b < a for a, b in itertools.pairwise(mus))
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(174.787, rel=1e-5)
-    old = solve(p, "dynamic-q-plus", penalty_decrease=False, scale_spread=math.inf)
+    # item 19 alone also rescues this run (its corrected steps keep the weight's effect small)
+    old = solve(p, "dynamic-q-plus", penalty_decrease=False, rise_curvature=False, scale_spread=math.inf)
     old_mus = [it["mu"] for it in old.extra["iterations"]]
     assert all(b >= a for a, b in itertools.pairwise(old_mus)) and old.status == "max_iter"
 
@@ -172,6 +173,32 @@ def test_constraint_curvature_restores_feasibility_where_the_linearization_canno
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(f_opt, rel=1e-6)
     off = solve(p, "dynamic-q-plus", stuck_curvature=False)
     assert off.status == "failed" and off.max_violation >= 1.0
+
+
+def test_constraint_curvature_after_a_trial_that_raised_the_violation():
+    """Item 19.  TRO3X3: plain steps that raise the violation are rejected and corrected in turn
+    while the weight climbs to 1e10, and the run stopped at violation 1.5e-6, f 9.00007 (the
+    optimum is 9).  With the next QP corrected by the constraints' curvatures (3.6) after such a
+    trial, it converges feasibly to f = 9 within 1e-5."""
+    p = _s2mpj("TRO3X3")
+    r = solve(p, "dynamic-q-plus")
+    assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(9.0, rel=1e-5)
+    off = solve(p, "dynamic-q-plus", rise_curvature=False)
+    assert off.status == "failed" and off.max_violation > 1e-6
+
+
+def test_constraint_curvature_after_a_rise_only_with_exact_jacobians():
+    """Item 19 is off where a constraint Jacobian comes from finite differences ((3.6) would carry
+    the difference error over the step length): HS27 with its Jacobian dropped runs exactly as
+    with rise_curvature=False, while with its exact Jacobian the option changes the run."""
+    p = hs.problem("27")
+    assert Oracle(p).exact_constraint_jacobians and Oracle(hs.problem("2")).exact_constraint_jacobians
+    fd = p.replace(eq_jacobian=None)
+    assert not Oracle(fd).exact_constraint_jacobians
+    on, off = solve(fd, "dynamic-q-plus"), solve(fd, "dynamic-q-plus", rise_curvature=False)
+    assert on.nfg == off.nfg and np.array_equal(on.x, off.x)
+    exact_on, exact_off = solve(p, "dynamic-q-plus"), solve(p, "dynamic-q-plus", rise_curvature=False)
+    assert exact_on.nfg != exact_off.nfg or not np.array_equal(exact_on.x, exact_off.x)
 
 
 def test_trust_region_rejects_and_shrinks():
