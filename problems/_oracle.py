@@ -170,12 +170,6 @@ class Oracle:
         return self._has_bounds
 
     @property
-    def exact_constraint_jacobians(self) -> bool:
-        """Whether every constraint block has its Jacobian given (none from finite differences);
-        True for an unconstrained problem."""
-        return all(self._jacs[k] is not None for k in ("ineq", "eq") if self._m[k])
-
-    @property
     def name(self) -> str:
         return self.problem.name
 

@@ -102,6 +102,13 @@ def _constraint_curvatures(e_from: dict[str, Any], x_from: np.ndarray, e_at: dic
             two_point_curvature(e_from["eq"], e_at["eq"], e_at["eq_jac"], dx))
 
 
+def exact_constraint_jacobians(oracle: Oracle) -> bool:
+    """Whether every constraint block of the oracle's problem has its Jacobian given (none from
+    finite differences); True without constraints."""
+    p = oracle.problem
+    return (not p.n_ineq or p.ineq_jacobian is not None) and (not p.n_eq or p.eq_jacobian is not None)
+
+
 def _linearized_infeasibility(d: np.ndarray, ev: dict[str, Any]) -> float:
     """The l1 infeasibility of the constraints linearized at ``ev``'s point, at the step d."""
     ineq, eq = linearized_violations(d, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"])
@@ -149,7 +156,6 @@ class _ScaledVariables:
         self.lower, self.upper = oracle.lower / s, oracle.upper / s
         self.x0 = oracle.x0 / s
         self.n, self.n_ineq, self.n_eq = oracle.n, oracle.n_ineq, oracle.n_eq
-        self.exact_constraint_jacobians = oracle.exact_constraint_jacobians
 
     def evaluate(self, y: np.ndarray) -> dict[str, Any]:
         s = self._s
@@ -483,14 +489,17 @@ class DynamicQPlus(AbstractSolver):
         rpr2 P1 and E and 3-RPR MO P1 ended worse (docs/thesis_solvers.md).
         """
         s = np.maximum(1.0, np.abs(np.clip(oracle.x0, oracle.lower, oracle.upper)))
+        exact = exact_constraint_jacobians(oracle)
         if not float(s.max()) > self.scale_spread * float(s.min()):
-            return self._minimize(oracle)
-        out = self._minimize(_ScaledVariables(oracle, s), var_scale=s)  # type: ignore[arg-type]
+            return self._minimize(oracle, exact_jacobians=exact)
+        out = self._minimize(_ScaledVariables(oracle, s), var_scale=s, exact_jacobians=exact)  # type: ignore[arg-type]
         return dataclasses.replace(out, x=np.clip(s * out.x, oracle.lower, oracle.upper))
 
-    def _minimize(self, oracle: Oracle, var_scale: np.ndarray | None = None) -> SolverOutput:
+    def _minimize(self, oracle: Oracle, var_scale: np.ndarray | None = None,
+                  exact_jacobians: bool = True) -> SolverOutput:
         """The iteration, on ``oracle`` as given; ``var_scale`` is s when it is the scaled view
-        y = x / s (`minimize`), so that the step test can measure steps in x too."""
+        y = x / s (`minimize`), so that the step test can measure steps in x too;
+        ``exact_jacobians``: no constraint Jacobian comes from finite differences."""
         lo, up = oracle.lower, oracle.upper
         x = np.clip(oracle.x0, lo, up)
         ev0 = oracle.evaluate(x)
@@ -536,7 +545,7 @@ class DynamicQPlus(AbstractSolver):
         risen = False  # [OWN] item 19: the last trial's plain step was rejected with the violation risen
         # item 19 needs exact Jacobians: (3.6)'s error from a finite-difference Jacobian is the
         # difference error over the step length, as large as the curvature itself on short steps
-        rise_curvature = self.rise_curvature and oracle.exact_constraint_jacobians
+        rise_curvature = self.rise_curvature and exact_jacobians
         for it in range(1, self.max_iter + 1):
             d_lo, d_up = np.maximum(lo - x, -rho), np.minimum(up - x, rho)  # simple bounds (3.7), move limit (3.8)
             res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)

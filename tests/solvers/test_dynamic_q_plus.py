@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from problems import Oracle, hs
 from solvers._qp_subproblem import l1_model, solve_elastic_qp
 from solvers._solve import solve
-from solvers.dynamic_q_plus import DynamicQPlus, _ScaledVariables
+from solvers.dynamic_q_plus import DynamicQPlus, _ScaledVariables, exact_constraint_jacobians
 
 
 def _instance(seed: int, n: int, p: int, q: int):
@@ -192,9 +192,9 @@ def test_constraint_curvature_after_a_rise_only_with_exact_jacobians():
     the difference error over the step length): HS27 with its Jacobian dropped runs exactly as
     with rise_curvature=False, while with its exact Jacobian the option changes the run."""
     p = hs.problem("27")
-    assert Oracle(p).exact_constraint_jacobians and Oracle(hs.problem("2")).exact_constraint_jacobians
+    assert exact_constraint_jacobians(Oracle(p)) and exact_constraint_jacobians(Oracle(hs.problem("2")))
     fd = p.replace(eq_jacobian=None)
-    assert not Oracle(fd).exact_constraint_jacobians
+    assert not exact_constraint_jacobians(Oracle(fd))
     on, off = solve(fd, "dynamic-q-plus"), solve(fd, "dynamic-q-plus", rise_curvature=False)
     assert on.nfg == off.nfg and np.array_equal(on.x, off.x)
     exact_on, exact_off = solve(p, "dynamic-q-plus"), solve(p, "dynamic-q-plus", rise_curvature=False)
