@@ -155,7 +155,7 @@ def test_penalty_decrease_lowers_an_overgrown_weight():
     mus = [it["mu"] for it in r.extra["iterations"]]
     assert max(mus) >= 1e4 and any(b < a for a, b in itertools.pairwise(mus))
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(174.787, rel=1e-5)
-    # item 19 alone also rescues this run (its corrected steps keep the weight's effect small)
+    # without item 17 but with item 19 this run also ends converged: item 17 is tested alone
     old = solve(p, "dynamic-q-plus", penalty_decrease=False, rise_curvature=False, scale_spread=math.inf)
     old_mus = [it["mu"] for it in old.extra["iterations"]]
     assert all(b >= a for a, b in itertools.pairwise(old_mus)) and old.status == "max_iter"
