@@ -21,3 +21,19 @@ def mine_file(tmp_path):
     f = tmp_path / "mine.py"
     f.write_text(MINE)
     return f
+
+
+@pytest.fixture
+def builtin_solvers_only():
+    """The solver registry as a fresh process has it: the solvers other tests registered in
+    this process (bad_solvers.py's, one of which never returns) are taken out for the test
+    and put back after it."""
+    from solvers import get_solver_class, register, solver_names, unregister
+    from solvers._registry import REGISTRY
+
+    user = [get_solver_class(n) for n in solver_names() if not REGISTRY.is_builtin(n)]
+    for cls in user:
+        unregister(cls.name)
+    yield
+    for cls in user:
+        register(cls)

@@ -247,13 +247,9 @@ def test_suite_file_without_tables_gets_the_campaign_tables(mine_file, tmp_path,
     assert "| bowl/n=2/x0 |" in capsys.readouterr().out
 
 
-def test_suite_file_without_solvers_runs_every_solver_that_handles_it(mine_file, tmp_path, capsys, monkeypatch):
-    """Every registered solver, as in a fresh process: without the patch the solvers that
-    other tests register in this process (bad_solvers.py's, one of which never returns)
-    would run too, each up to the 600 s time limit."""
-    from solvers._registry import REGISTRY
-
-    monkeypatch.setattr(REGISTRY, "_user", {})
+def test_suite_file_without_solvers_runs_every_solver_that_handles_it(mine_file, builtin_solvers_only, tmp_path):
+    """Every registered solver, as in a fresh process (without the fixture, the never-returning
+    solver another test registered would run too, up to the 600 s time limit)."""
     assert main(["run", "--suite-file", str(mine_file), "--out", str(tmp_path), "--quiet", "--jobs", "2"]) == 0
     runs = Store(tmp_path, "mine").load()
     assert {"sqsd", "dynamic-q", "scipy-bfgs", "ipopt"} <= set(runs["solver"])
