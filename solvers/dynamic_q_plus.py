@@ -102,7 +102,7 @@ def _constraint_curvatures(e_from: dict[str, Any], x_from: np.ndarray, e_at: dic
             two_point_curvature(e_from["eq"], e_at["eq"], e_at["eq_jac"], dx))
 
 
-def exact_constraint_jacobians(oracle: Oracle) -> bool:
+def _exact_constraint_jacobians(oracle: Oracle) -> bool:
     """Whether every constraint block of the oracle's problem has its Jacobian given (none from
     finite differences); True without constraints."""
     p = oracle.problem
@@ -245,9 +245,10 @@ class DynamicQPlus(AbstractSolver):
                               "1 / this of the ||grad f|| that set f's scale (at x0: f is scaled by "
                               "1 / max(1, ||grad f(x0)||)), f is scaled by 1 / max(1, ||grad f||) there instead (and "
                               "the model with it, up to the cap sigma_max); inf: never", "[OWN]")
-    max_iter: int = option(1000, "maximum number of iterations, each one trial point of a QP step (rejected "
-                           "trials included), plus one more when a second-order correction is tried; the field's "
-                           "caps are of this order (trust-constr 1000 iterations, Ipopt 3000)", "[OWN]")
+    max_iter: int = option(3000, "maximum number of iterations, each one trial point of a QP step (rejected "
+                           "trials included), plus one more when a second-order correction is tried; Ipopt's "
+                           "default cap (item 20: 1000 before, which stopped BFGS crawls such as PFIT1LS and "
+                           "MARATOSB short of their optima)", "[OWN]")
 
     def check_together(self) -> None:  # called by AbstractSolver.__post_init__ after the per-option checks
         for k in ("rho", "sigma_min", "sigma_max", "mu0"):
@@ -489,7 +490,7 @@ class DynamicQPlus(AbstractSolver):
         rpr2 P1 and E and 3-RPR MO P1 ended worse (docs/thesis_solvers.md).
         """
         s = np.maximum(1.0, np.abs(np.clip(oracle.x0, oracle.lower, oracle.upper)))
-        exact = exact_constraint_jacobians(oracle)
+        exact = _exact_constraint_jacobians(oracle)
         if not float(s.max()) > self.scale_spread * float(s.min()):
             return self._minimize(oracle, exact_jacobians=exact)
         out = self._minimize(_ScaledVariables(oracle, s), var_scale=s, exact_jacobians=exact)  # type: ignore[arg-type]
