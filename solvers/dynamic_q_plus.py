@@ -20,7 +20,8 @@ Changed (see docs/thesis_solvers.md, "Dynamic-Q+"):
    scaled by them, so that the move limit is per variable;
 6. with constraints, f's scale (fixed from grad f(x0)) is refreshed once the gradient has fallen
    by orders, so that f keeps its weight against the penalty term; and the model's first
-   curvature is never taken from a rejected trial whose curvature (3.6) is beyond the cap.
+   curvature is never taken from a rejected trial whose curvature (3.6) is beyond the cap;
+7. without constraints, the BFGS matrix is self-scaled (Al-Baali) when a step shows it too stiff.
 """
 
 from __future__ import annotations
@@ -245,6 +246,11 @@ class DynamicQPlus(AbstractSolver):
                               "1 / this of the ||grad f|| that set f's scale (at x0: f is scaled by "
                               "1 / max(1, ||grad f(x0)||)), f is scaled by 1 / max(1, ||grad f||) there instead (and "
                               "the model with it, up to the cap sigma_max); inf: never", "[OWN]")
+    self_scaling: bool = option(True, "without general constraints (bounds allowed): before a BFGS update whose "
+                                "step measured less curvature than the model's (0 < s^T y < s^T B s), scale B by "
+                                "s^T y / s^T B s, so that a model made too stiff by earlier steps softens in every "
+                                "direction, not only along the step; False: before item 21 of "
+                                "docs/thesis_solvers.md", "[OWN] item 21; Al-Baali's conditional self-scaling")
     max_iter: int = option(3000, "maximum number of iterations, each one trial point of a QP step (rejected "
                            "trials included), plus one more when a second-order correction is tried; Ipopt's "
                            "default cap (item 20: 1000 before, which stopped BFGS crawls such as PFIT1LS and "
@@ -322,6 +328,15 @@ class DynamicQPlus(AbstractSolver):
         sy = float(dx @ y)
         if not (sBs > 0.0 and _all(_isfinite(y), axis=None)):
             return B
+        if self.self_scaling and not first and not lam.size and not nu.size and 0.0 < sy < sBs:
+            # [OWN] item 21: Al-Baali's conditional self-scaling (JOTA 96, 1998), tau = min(1, s^T y / s^T B s).
+            # BFGS corrects an overestimated curvature only along each step, so a model made too stiff
+            # by earlier steps crawls (HEART8LS: B's largest eigenvalue rose to 5e4 while every interior
+            # step gained more than predicted, to the cap at f = 1.14, optimum 0).  Only without
+            # constraints: there y is the change of the Lagrangian's gradient under changing
+            # multipliers, and scaling the whole model by it lost more runs than it gained (CUTEst)
+            tau = sy / sBs
+            B, Bs, sBs = B * tau, Bs * tau, sy
         theta = 1.0 if sy >= 0.2 * sBs else 0.8 * sBs / (sBs - sy)
         r = theta * y + (1.0 - theta) * Bs
         sr = float(dx @ r)

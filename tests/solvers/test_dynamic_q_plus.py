@@ -104,6 +104,27 @@ def test_bfgs_update_that_overflows_keeps_the_matrix():
             assert np.array_equal(out, B)
 
 
+def test_self_scaling_softens_a_too_stiff_model_only_without_constraints():
+    """Item 21.  B = 10 I, a step s = e1 that measures curvature 2 (s^T y = 2 < s^T B s = 10):
+    plain BFGS corrects B along s only (diag(2, 10)); Al-Baali's conditional self-scaling first
+    scales B by 2 / 10, so the unexplored direction softens too (diag(2, 2)).  With constraints
+    (any multiplier block non-empty) and with self_scaling=False, the plain update."""
+    B, s = 10.0 * np.eye(2), np.array([1.0, 0.0])
+    old = {"g": np.zeros(2), "ineq_jac": np.zeros((1, 2)), "eq_jac": np.zeros((0, 2))}
+    new = {**old, "g": np.array([2.0, 0.0])}
+    none = np.zeros(0)
+    scaled = DynamicQPlus()._bfgs(B, 1.0, old, new, none, none, s, first=False)
+    np.testing.assert_allclose(scaled, np.diag([2.0, 2.0]))
+    plain = np.diag([2.0, 10.0])
+    np.testing.assert_allclose(DynamicQPlus(self_scaling=False)._bfgs(B, 1.0, old, new, none, none, s, first=False),
+                               plain)
+    np.testing.assert_allclose(DynamicQPlus()._bfgs(B, 1.0, old, new, np.zeros(1), none, s, first=False), plain)
+    # a step that measures more curvature than the model's is not scaled (tau = min(1, ...))
+    stiff = {**old, "g": np.array([20.0, 0.0])}
+    np.testing.assert_allclose(DynamicQPlus()._bfgs(B, 1.0, old, stiff, none, none, s, first=False),
+                               np.diag([20.0, 10.0]))
+
+
 def _point(gf, g0=(), Jg=None, h0=(), Jh=None, f: float = 0.0):
     """An evaluated point as `_minimize` holds it (f unscaled, sf = 1: "raw" is the point itself);
     constraint blocks empty unless given."""
@@ -195,10 +216,22 @@ def test_iteration_cap_lets_a_bfgs_crawl_finish():
     take 1,086-1,197 iterations to f = -1.  With the old cap of 1,000 Dynamic-Q+ stopped at -0.22;
     with the default (Ipopt's 3,000) it converges there."""
     p = _s2mpj("MARATOSB")
-    r = solve(p, "dynamic-q-plus")
+    # without item 21's self-scaling, which this valley does not suit (on the cap at -0.92 with it)
+    r = solve(p, "dynamic-q-plus", self_scaling=False)
     assert r.status == "converged" and r.f == pytest.approx(-1.0, rel=1e-6) and 1000 < r.nit < 3000
-    capped = solve(p, "dynamic-q-plus", max_iter=1000)
+    capped = solve(p, "dynamic-q-plus", self_scaling=False, max_iter=1000)
     assert capped.status == "max_iter" and capped.f > -0.5
+
+
+def test_self_scaling_ends_a_bfgs_crawl():
+    """Item 21.  HEART6LS (n = 6, unconstrained least squares, optimum 0): plain BFGS crawls on
+    interior steps that gain more than predicted while B's largest eigenvalue grows, to the cap at
+    f = 0.033; self-scaled, the run converges to the optimum well before the cap."""
+    p = _s2mpj("HEART6LS")
+    r = solve(p, "dynamic-q-plus")
+    assert r.status == "converged" and r.f < 1e-10 and r.nit < 1500
+    plain = solve(p, "dynamic-q-plus", self_scaling=False)
+    assert plain.status == "max_iter" and plain.f > 0.01
 
 
 def test_constraint_curvature_after_a_rise_only_with_exact_jacobians():
@@ -395,11 +428,13 @@ def test_no_stop_at_a_point_far_from_stationary():
     """MISRA1BLS (S2MPJ, least squares, optimum 0.0754647): the model's steps become small at
     f = 7.31, where a step of the size of x would still change f by far more than 10% of
     1 + |f| to first order.  Without the check (eps_kkt = inf) the run stops there after 12 N^fg;
-    with it the model is reset to the unit model and the run reaches the optimum."""
+    with it the model is reset to the unit model and the run reaches the optimum.  Both without
+    item 21's self-scaling, which keeps the model from becoming that stiff here (the run reaches
+    the optimum with or without the check)."""
     p = _s2mpj("MISRA1BLS")
-    unchecked = solve(p, "dynamic-q-plus", eps_kkt=math.inf)
+    unchecked = solve(p, "dynamic-q-plus", eps_kkt=math.inf, self_scaling=False)
     assert unchecked.status == "converged" and unchecked.f > 1.0
-    r = solve(p, "dynamic-q-plus")
+    r = solve(p, "dynamic-q-plus", self_scaling=False)
     assert r.status == "converged" and r.f == pytest.approx(0.0754647, rel=1e-5)
     assert r.extra["n_reset"] >= 1 and r.extra["unit_model_step"] <= 0.1
 
@@ -442,11 +477,12 @@ def test_reset_again_at_the_same_point_after_a_rejected_trial():
 def test_stationarity_check_at_a_hundredth():
     """PALMER2B (S2MPJ, least squares, optimum 0.623267): the run stops at f = 11.96 where the unit
     model's step is 0.04, a point the check let pass at its former threshold 0.1; at the
-    default 0.01 the model is reset there and the run reaches the optimum (item 16)."""
+    default 0.01 the model is reset there and the run reaches the optimum (item 16).  Both without
+    item 21's self-scaling, with which the run reaches the optimum at either threshold."""
     p = _s2mpj("PALMER2B")
-    loose = solve(p, "dynamic-q-plus", eps_kkt=0.1)
+    loose = solve(p, "dynamic-q-plus", eps_kkt=0.1, self_scaling=False)
     assert loose.status == "converged" and loose.f > 10.0 and loose.extra["unit_model_step"] > 0.01
-    r = solve(p, "dynamic-q-plus")
+    r = solve(p, "dynamic-q-plus", self_scaling=False)
     assert r.status == "converged" and r.f == pytest.approx(0.623267, rel=1e-5)
 
 
