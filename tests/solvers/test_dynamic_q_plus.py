@@ -225,7 +225,7 @@ def test_iteration_cap_lets_a_bfgs_crawl_finish():
 
 def test_self_scaling_ends_a_bfgs_crawl():
     """Item 21.  HEART6LS (n = 6, unconstrained least squares, optimum 0): plain BFGS crawls on
-    interior steps that gain more than predicted while B's largest eigenvalue grows, to the cap at
+    interior steps that gain more than predicted while B's largest diagonal entry grows, to the cap at
     f = 0.033; self-scaled, the run converges to the optimum well before the cap."""
     p = _s2mpj("HEART6LS")
     r = solve(p, "dynamic-q-plus")
