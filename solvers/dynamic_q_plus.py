@@ -21,7 +21,9 @@ Changed (see docs/thesis_solvers.md, "Dynamic-Q+"):
 6. with constraints, f's scale (fixed from grad f(x0)) is refreshed once the gradient has fallen
    by orders, so that f keeps its weight against the penalty term; and the model's first
    curvature is never taken from a rejected trial whose curvature (3.6) is beyond the cap;
-7. without constraints, the BFGS matrix is self-scaled (Al-Baali) when a step shows it too stiff.
+7. without constraints, the BFGS matrix is self-scaled (Al-Baali) when a step shows it too stiff;
+8. a run whose last accepted steps, all full steps between feasible points, together lowered f by
+   almost nothing goes to the stopping path (restart, stationarity check, stop).
 """
 
 from __future__ import annotations
@@ -193,6 +195,12 @@ class DynamicQPlus(AbstractSolver):
                            "between feasible points, changed f by less than this relative to 1 + |f| (the "
                            "thesis's test (3.11), guarded); 0: off (1e-9 until item 15 of docs/thesis_solvers.md: "
                            "it ended runs crossing a plateau)", "[OWN]; (3.11)")
+    eps_stall: float = option(1e-10, "stop (through the restart and the stationarity check, as the other tests): "
+                              "the last `stall_window` accepted steps, each a full step of a model with curvature "
+                              "information between feasible points, lowered f by less than this relative to "
+                              "1 + |f| in all; 0: off (before item 22 of docs/thesis_solvers.md)",
+                              "[OWN] item 22; Ipopt's acceptable_iter = 15")
+    stall_window: int = option(15, "the number of accepted steps `eps_stall` looks back over", "[OWN] item 22")
     eps_c: float = option(1e-7, "feasibility: every constraint violation <= eps_c", "[OWN]")
     eps_kkt: float = option(0.01, "a stopping test ends the run only where the unit model's step (x in units of "
                             "1 + ||x||_inf, f in units of 1 + |f|, every curvature 1, box [-1, 1]; r ||grad f||_inf "
@@ -265,7 +273,7 @@ class DynamicQPlus(AbstractSolver):
             raise ValueError(f"dynamic-q-plus: rescale_f must be >= 1 (inf: never), got {self.rescale_f!r}")
         if not (self.scale_spread >= 1.0):  # inf allowed (never scale); NaN fails here
             raise ValueError(f"dynamic-q-plus: scale_spread must be >= 1 (inf: never scale), got {self.scale_spread!r}")
-        for k in ("eps_x", "eps_f", "eps_df", "eps_c", "eps_kkt"):
+        for k in ("eps_x", "eps_f", "eps_df", "eps_stall", "eps_c", "eps_kkt"):
             v = getattr(self, k)
             if not (isinstance(v, (int, float)) and v >= 0):
                 raise ValueError(f"dynamic-q-plus: {k} must be >= 0, got {v!r}")
@@ -275,6 +283,8 @@ class DynamicQPlus(AbstractSolver):
                 raise ValueError(f"dynamic-q-plus: {k} must be in (0, 1), got {v!r}")
         if self.curvature not in CURVATURES:
             raise ValueError(f"dynamic-q-plus: curvature must be one of {CURVATURES}, got {self.curvature!r}")
+        if not (isinstance(self.stall_window, (int, np.integer)) and self.stall_window >= 1):
+            raise ValueError(f"dynamic-q-plus: stall_window must be an integer >= 1, got {self.stall_window!r}")
         if not (isinstance(self.max_iter, (int, np.integer)) and self.max_iter >= 1):
             raise ValueError(f"dynamic-q-plus: max_iter must be an integer >= 1, got {self.max_iter!r}")
 
@@ -562,6 +572,8 @@ class DynamicQPlus(AbstractSolver):
         # item 19 needs exact Jacobians: (3.6)'s error from a finite-difference Jacobian is the
         # difference error over the step length, as large as the curvature itself on short steps
         rise_curvature = self.rise_curvature and exact_jacobians
+        # [OWN] item 22: unscaled f after each of the last accepted full steps between feasible points
+        window: list[float] = []
         for it in range(1, self.max_iter + 1):
             d_lo, d_up = np.maximum(lo - x, -rho), np.minimum(up - x, rho)  # simple bounds (3.7), move limit (3.8)
             res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
@@ -714,8 +726,20 @@ class DynamicQPlus(AbstractSolver):
                 f_change = abs(evt["raw"]["f"] - ev["raw"]["f"]) / (1.0 + abs(ev["raw"]["f"]))  # unscaled f
                 interior = dn < 0.99 * rho  # the full QP step, not cut by the move limit
                 x, ev = xt, evt
-                if (informed and interior and ratio >= 0.75 and f_change < self.eps_df and viol <= self.eps_c
-                        and evt["viol"] <= self.eps_c):
+                full_feasible = informed and interior and viol <= self.eps_c and evt["viol"] <= self.eps_c
+                # [OWN] item 22: a crawl.  Near a minimizer where f is flatter than quadratic (DENSCHND,
+                # WATSON: every step gains 4x what the BFGS model predicts) the steps and the predicted
+                # reductions stay above their tests while f falls by 1e-13 per step, to the cap or the
+                # time limit.  At this rate the remaining iterations could not move f by 1e-7.
+                window = (window + [float(evt["raw"]["f"])])[-self.stall_window - 1:] if full_feasible else []
+                stop = None
+                if full_feasible and ratio >= 0.75 and f_change < self.eps_df:
+                    stop = "feasible full step with normalized change of f < eps_df (as 3.11)"
+                elif (len(window) > self.stall_window
+                      and window[0] - window[-1] < self.eps_stall * (1.0 + abs(window[-1]))):
+                    stop = f"f lowered by less than eps_stall over the last {self.stall_window} full steps"
+                if stop is not None:
+                    window = []
                     if self._restart_before_stop(restarted, n_upd):
                         sigma, restarted = self._spherical_restart(s_last, oracle.n), True
                         recent = [evt]
@@ -726,8 +750,7 @@ class DynamicQPlus(AbstractSolver):
                         n_upd, n_reset, x_reset = 0, n_reset + 1, x
                         recent = [evt]
                         continue
-                    return SolverOutput(x, Status.CONVERGED, "feasible full step with normalized change of f "
-                                        "< eps_df (as 3.11)", nit=it, extra=self._extra(log, n_rej, chi, n_reset))
+                    return SolverOutput(x, Status.CONVERGED, stop, nit=it, extra=self._extra(log, n_rej, chi, n_reset))
                 c = self._objective_rescale(sf, evt["raw"]["g"], sigma) if rescalable else 1.0
                 if c > 1.0:  # `scaled` reads sf; the non-monotone reference restarts in the new units
                     sf, sigma, recent = sf * c, sigma * c, []

@@ -234,6 +234,37 @@ def test_self_scaling_ends_a_bfgs_crawl():
     assert plain.status == "max_iter" and plain.f > 0.01
 
 
+def test_stall_test_ends_a_crawl_at_a_degenerate_minimum():
+    """Item 22.  DENSCHND (n = 3, optimum 0, f quartic near it): every interior step gains 4x what
+    the BFGS model predicts while f falls by 1e-17 per step, and without the stall test the run
+    goes to the cap.  With it, 15 full steps that together lower f by under 1e-10 (1 + |f|) send
+    the run to the stopping path (a restart, then the step test) well before the cap, at an end
+    within 1e-8 of the optimum."""
+    p = _s2mpj("DENSCHND")
+    r = solve(p, "dynamic-q-plus")
+    assert r.status == "converged" and r.f < 1e-8 and r.nit < 500
+    off = solve(p, "dynamic-q-plus", eps_stall=0.0)
+    assert off.status == "max_iter"
+
+
+def test_stall_test_stops_with_its_own_message():
+    """Item 22.  LUKVLI12 (n = 7, inequality constraints): the run ends through the stall test,
+    which names itself, at a feasible point whose f is within 1e-12 of the end without the test."""
+    p = _s2mpj("LUKVLI12")
+    r = solve(p, "dynamic-q-plus")
+    assert r.status == "converged" and "eps_stall over the last 15 full steps" in r.message
+    off = solve(p, "dynamic-q-plus", eps_stall=0.0)
+    assert "eps_stall" not in off.message and r.nfg < off.nfg
+    assert r.max_violation <= 1e-7 and abs(r.f - off.f) <= 1e-12
+
+
+@pytest.mark.parametrize("opts", [{"stall_window": 0}, {"stall_window": 2.5}, {"eps_stall": -1e-10},
+                                  {"eps_stall": float("nan")}])
+def test_stall_options_checked(opts):
+    with pytest.raises(ValueError, match="dynamic-q-plus: .*(stall_window|eps_stall)"):
+        DynamicQPlus(**opts)
+
+
 def test_constraint_curvature_after_a_rise_only_with_exact_jacobians():
     """Item 19 is off where a constraint Jacobian comes from finite differences ((3.6) would carry
     the difference error over the step length): HS27 with its Jacobian dropped runs exactly as
