@@ -13,7 +13,10 @@ feasible whatever the move limit; when the linearized constraints can be met ins
 and mu exceeds the multipliers, s = t = 0 and the step is the ordinary SQP step (Fletcher's
 Sl1QP).  Solved exactly by Clarabel (interior point; dual variables give the multipliers).
 When Clarabel fails on it (with mu near 1e10 it has reported the bounded QP dual infeasible),
-the same QP with its objective divided by mu is solved once more.
+the same QP with its objective divided by mu is solved once more.  When Clarabel ends short of
+"Solved" (stalled on an ill-conditioned model), the QP is solved once more with its static
+regularization at the curvature floor and the step with the lower model kept
+(docs/thesis_solvers.md, Dynamic-Q+ item 23).
 """
 
 from __future__ import annotations
@@ -79,12 +82,21 @@ def _identity_blocks(n: int, p: int, q: int) -> tuple[np.ndarray, np.ndarray, np
     return rows, cols, vals
 
 
+#: [OWN] item 23: the static regularization of the retry, Dynamic-Q+'s curvature floor
+#: (``sigma_min``); Clarabel's default, 1e-8, exceeds the smallest curvatures of the models
+#: it stalls on.
+LOW_REGULARIZATION = 1e-12
+
+
 @functools.cache
-def _settings() -> clarabel.DefaultSettings:
+def _settings(low_regularization: bool = False) -> clarabel.DefaultSettings:
+    """Clarabel's settings (one cached object per flag; never mutate the one returned)."""
     settings = clarabel.DefaultSettings()
     settings.verbose = False
     settings.tol_gap_abs = settings.tol_gap_rel = 1e-10
     settings.tol_feas = 1e-10
+    if low_regularization:
+        settings.static_regularization_constant = LOW_REGULARIZATION
     return settings
 
 
@@ -188,9 +200,13 @@ def _constraint_csc(Jg: np.ndarray, Jh: np.ndarray, n: int, p: int, q: int) -> _
 
 
 def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, Jg: np.ndarray, h0: np.ndarray,
-                     Jh: np.ndarray, d_lo: np.ndarray, d_up: np.ndarray, mu: float) -> ElasticQPResult:
+                     Jh: np.ndarray, d_lo: np.ndarray, d_up: np.ndarray, mu: float,
+                     retry_stalled: bool = True) -> ElasticQPResult:
     """Solve the elastic QP above (box ``d_lo <= d <= d_up``; ``sigma`` a positive scalar,
-    a positive diagonal of shape (n,) or a positive definite matrix of shape (n, n))."""
+    a positive diagonal of shape (n,) or a positive definite matrix of shape (n, n)).
+
+    ``retry_stalled``: when Clarabel's status is not "Solved", solve once more with the static
+    regularization at `LOW_REGULARIZATION` and keep whichever usable step has the lower l1 model."""
     n, p, q = gf.size, g0.size, h0.size
     nv = n + p + 2 * q
     ne = p + 2 * q  # elastic variables s, t+, t-
@@ -211,7 +227,8 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     # Clarabel copies its inputs element by element; from Python lists that is a quarter faster
     # than from NumPy arrays (the same doubles, so the same solve)
     A_lists = A_csc.as_lists()
-    v, z, status, ok = _clarabel_solve(P.as_lists(), gf.tolist() + [float(mu)] * ne, A_lists, b, cones)
+    P_lists, c = P.as_lists(), gf.tolist() + [float(mu)] * ne
+    v, z, status, ok = _clarabel_solve(P_lists, c, A_lists, b, cones)
     if not ok and mu > 1.0:
         # [OWN] the same QP with its objective divided by mu (the same minimizer; the duals
         # scale by 1/mu): the slack costs become 1 instead of up to 1e10
@@ -220,17 +237,27 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
         v, z, status, ok = _clarabel_solve(Ps, (gf / mu).tolist() + [1.0] * ne, A_lists, b, cones)
         z = z * mu
     d = np.minimum(np.maximum(v[:n], d_lo), d_up) if ok else np.zeros(n)  # np.clip, without its wrapper
+    model = l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu)
+    if retry_stalled and status != "Solved":
+        # [OWN] item 23: Clarabel's regularization (1e-8) above the model's smallest curvatures
+        # stalls the interior point ("InsufficientProgress", "AlmostSolved") at a step far from
+        # the QP's minimizer (BROWNBS: model -9.8e3 where the minimizer's is -9.2e4)
+        v2, z2, status2, ok2 = _clarabel_solve(P_lists, c, A_lists, b, cones, low_regularization=True)
+        if ok2:
+            d2 = np.minimum(np.maximum(v2[:n], d_lo), d_up)
+            model2 = l1_model(d2, gf, sigma, g0, Jg, h0, Jh, mu)
+            if not ok or model2 < model:
+                v, z, status, ok, d, model = v2, z2, status2, ok2, d2, model2
     nu = z[:q].copy() if ok else np.zeros(q)
     lam = np.maximum(z[q:q + p], 0.0) if ok else np.zeros(p)
     elastic = float(_sum(v[n:], axis=None)) if ok else 0.0
-    model = l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu)
     return ElasticQPResult(d, lam, nu, elastic, model, ok, status)
 
 
-def _clarabel_solve(P: _CscView, c: list[float], A: _CscView, b: list[float],
-                    cones: list) -> tuple[np.ndarray, np.ndarray, str, bool]:
+def _clarabel_solve(P: _CscView, c: list[float], A: _CscView, b: list[float], cones: list,
+                    low_regularization: bool = False) -> tuple[np.ndarray, np.ndarray, str, bool]:
     """Clarabel's primal and dual solutions, its status, and whether the step is usable."""
-    sol = clarabel.DefaultSolver(P, c, A, b, cones, _settings()).solve()
+    sol = clarabel.DefaultSolver(P, c, A, b, cones, _settings(low_regularization)).solve()
     v = np.asarray(sol.x)
     z = np.asarray(sol.z)
     status = str(sol.status)

@@ -259,6 +259,10 @@ class DynamicQPlus(AbstractSolver):
                                 "s^T y / s^T B s, so that a model made too stiff by earlier steps softens in every "
                                 "direction, not only along the step; False: before item 21 of "
                                 "docs/thesis_solvers.md", "[OWN] item 21; Al-Baali's conditional self-scaling")
+    qp_retry: bool = option(True, "when Clarabel ends a subproblem short of 'Solved', solve it once more with "
+                            "its static regularization at 1e-12 (its default, 1e-8, exceeds the smallest "
+                            "curvatures of the models it stalls on) and keep the step with the lower model; "
+                            "False: before item 23 of docs/thesis_solvers.md", "[OWN] item 23")
     max_iter: int = option(3000, "maximum number of iterations, each one trial point of a QP step (rejected "
                            "trials included), plus one more when a second-order correction is tried; Ipopt's "
                            "default cap (item 20: 1000 before, which stopped BFGS crawls such as PFIT1LS and "
@@ -385,6 +389,10 @@ class DynamicQPlus(AbstractSolver):
         # LAPACK's Cholesky (as np.linalg.cholesky) called directly: info > 0 = not positive definite
         return dpotrf(shifted, lower=1, clean=0, overwrite_a=1)[1] == 0
 
+    def _qp(self, gf, sigma, g0, Jg, h0, Jh, d_lo, d_up, mu) -> ElasticQPResult:
+        """`solve_elastic_qp` with this solver's `qp_retry`."""
+        return solve_elastic_qp(gf, sigma, g0, Jg, h0, Jh, d_lo, d_up, mu, retry_stalled=self.qp_retry)
+
     def _steer(self, res, mu: float, ev: dict[str, Any], sigma, d_lo: np.ndarray, d_up: np.ndarray):
         """[OWN] Steering rule for the penalty weight (Byrd, Nocedal & Waltz 2008, eps1 = 0.1).
 
@@ -398,15 +406,15 @@ class DynamicQPlus(AbstractSolver):
         """
         if _removes_a_tenth(res.d, ev):
             return res, mu
-        feas = solve_elastic_qp(np.zeros_like(ev["g"]), sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
-                                d_lo, d_up, 1e6)
+        feas = self._qp(np.zeros_like(ev["g"]), sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
+                        d_lo, d_up, 1e6)
         if not feas.ok:
             return res, mu
         l0 = ev["l1"]
         ideal = l0 - _linearized_infeasibility(feas.d, ev)
         while ideal > 0.0 and l0 - _linearized_infeasibility(res.d, ev) < 0.1 * ideal and mu < MU_MAX:
             mu *= 10.0
-            new = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
+            new = self._qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
             if not new.ok:
                 break
             res = new
@@ -427,7 +435,8 @@ class DynamicQPlus(AbstractSolver):
         return _clip(s_last, self.sigma_min, self.sigma_max) * np.eye(n)
 
     @staticmethod
-    def _unit_model_step(ev: dict[str, Any], x: np.ndarray, lo: np.ndarray, up: np.ndarray) -> float:
+    def _unit_model_step(ev: dict[str, Any], x: np.ndarray, lo: np.ndarray, up: np.ndarray,
+                         retry_stalled: bool = True) -> float:
         """[OWN] A first-order stationarity measure independent of the quasi-Newton matrix and of
         the scaling of f fixed at x0: with the step in units of r = 1 + ||x||_inf and f in units of
         1 + |f|, the step of the QP with every curvature 1 in the box [-1, 1] (linearized
@@ -437,7 +446,8 @@ class DynamicQPlus(AbstractSolver):
         raw = ev["raw"]
         g = (r / (1.0 + abs(raw["f"]))) * raw["g"]
         res = solve_elastic_qp(g, np.ones(x.size), ev["ineq"], r * ev["ineq_jac"], ev["eq"], r * ev["eq_jac"],
-                               np.maximum((lo - x) / r, -1.0), np.minimum((up - x) / r, 1.0), UNIT_QP_WEIGHT)
+                               np.maximum((lo - x) / r, -1.0), np.minimum((up - x) / r, 1.0), UNIT_QP_WEIGHT,
+                               retry_stalled)
         return _inf_norm(res.d) if res.ok else math.inf
 
     @staticmethod
@@ -477,7 +487,7 @@ class DynamicQPlus(AbstractSolver):
         """[OWN] `_unit_model_step`, or its upper bound `_unit_model_step_bound` where that is
         already below ``eps_kkt`` (the same decision, without the QP)."""
         bound = self._unit_model_step_bound(ev, x, lo, up, res.lam, res.nu, sf)
-        return bound if bound <= self.eps_kkt else self._unit_model_step(ev, x, lo, up)
+        return bound if bound <= self.eps_kkt else self._unit_model_step(ev, x, lo, up, self.qp_retry)
 
     def _unit_model(self, ev: dict[str, Any], x: np.ndarray, sf: float, n: int) -> np.ndarray:
         """[OWN] The model of `_unit_model_step` in the iteration's units (f times sf, x): P = c I
@@ -576,7 +586,7 @@ class DynamicQPlus(AbstractSolver):
         window: list[float] = []
         for it in range(1, self.max_iter + 1):
             d_lo, d_up = np.maximum(lo - x, -rho), np.minimum(up - x, rho)  # simple bounds (3.7), move limit (3.8)
-            res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
+            res = self._qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
             if not res.ok:  # [OWN] numerical trouble in the QP solver: retry with a smaller move limit
                 rho *= self.shrink
                 if rho / (1.0 + float(np.abs(x).max(initial=0.0))) < 1e-3 * self.eps_x:
@@ -593,8 +603,8 @@ class DynamicQPlus(AbstractSolver):
                 # linearization, not because mu is too small (raising it there ran mu to 1e7 on HS104);
                 # a merit-stationary infeasible point raises it below
                 mu = 2.0 * mult
-                res = solve_elastic_qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
-                                       d_lo, d_up, mu)
+                res = self._qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"],
+                               d_lo, d_up, mu)
             elif (self.penalty_decrease and mu <= mu_lowered and res.elastic <= self.eps_c
                   and ev["viol"] <= self.eps_c and mu > 100.0 * max(float(self.mu0), 2.0 * mult)):
                 # [OWN] lower an overgrown weight.  Steering can raise mu by 1e4 far from the solution;
@@ -626,8 +636,8 @@ class DynamicQPlus(AbstractSolver):
                 rc = res
                 for _ in range(2):
                     dd = float(rc.d @ rc.d)
-                    rc = solve_elastic_qp(ev["g"], sigma, ev["ineq"] + 0.5 * bq * dd, ev["ineq_jac"],
-                                          ev["eq"] + 0.5 * cq * dd, ev["eq_jac"], d_lo, d_up, mu)
+                    rc = self._qp(ev["g"], sigma, ev["ineq"] + 0.5 * bq * dd, ev["ineq_jac"],
+                                  ev["eq"] + 0.5 * cq * dd, ev["eq_jac"], d_lo, d_up, mu)
                 # predicted reduction of the curvature-corrected model at its own step; kept only if
                 # it is a descent step of that model
                 dd = float(rc.d @ rc.d)
@@ -690,8 +700,8 @@ class DynamicQPlus(AbstractSolver):
                 # [OWN] second-order correction (Fletcher 1982): the linearization at x shifted to the
                 # constraint values at the trial point, so the corrected step follows curved constraints
                 # where the l1 merit rejected the plain one (Maratos effect; HS27, HS47).  One more point.
-                rs = solve_elastic_qp(ev["g"], sigma, evt["ineq"] - ev["ineq_jac"] @ d, ev["ineq_jac"],
-                                      evt["eq"] - ev["eq_jac"] @ d, ev["eq_jac"], d_lo, d_up, mu)
+                rs = self._qp(ev["g"], sigma, evt["ineq"] - ev["ineq_jac"] @ d, ev["ineq_jac"],
+                              evt["eq"] - ev["eq_jac"] @ d, ev["eq_jac"], d_lo, d_up, mu)
                 if rs.ok and _inf_norm(rs.d) > 0.0:
                     xc = np.minimum(np.maximum(x + rs.d, lo), up)
                     evc = scaled(oracle.evaluate(xc))

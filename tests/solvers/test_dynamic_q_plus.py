@@ -90,6 +90,38 @@ def test_elastic_qp_at_a_huge_penalty_weight_is_solved():
     assert np.all(res.lam >= 0.0) and np.all(res.lam < 1.0)
 
 
+def _box_qp_minimum(gf: np.ndarray, B: np.ndarray, lo: np.ndarray, up: np.ndarray) -> float:
+    """The minimum of gf^T d + d^T B d / 2 over the box, by enumerating which variables sit on
+    which bound (3^n active sets; exact for small n)."""
+    best = math.inf
+    for sets in itertools.product((0, 1, 2), repeat=gf.size):  # 0 free, 1 lower, 2 upper
+        d = np.where(np.array(sets) == 1, lo, up)
+        free = np.array(sets) == 0
+        if free.any():
+            rhs = -(gf[free] + B[np.ix_(free, ~free)] @ d[~free])
+            d[free] = np.linalg.solve(B[np.ix_(free, free)], rhs)
+        if np.all(d >= lo) and np.all(d <= up):
+            best = min(best, float(gf @ d + 0.5 * d @ B @ d))
+    return best
+
+
+def test_elastic_qp_retries_a_stalled_solve_with_less_regularization():
+    """Item 23.  CUTEst BROWNBS's subproblem (n = 2, no constraints, model eigenvalues about 1e-6
+    and 1.8e4): Clarabel's default static regularization 1e-8 stalls it ("InsufficientProgress")
+    at a model value of about -9.8e3 where the box's minimizer has -9.2e4.  The retry at
+    regularization 1e-12 reaches the minimizer, computed here by enumerating active sets."""
+    gf = np.array([-0.7830434770561624, -14227.197245188761])
+    B = np.array([[1.5259883352008976e-06, 0.04368987829122692], [0.04368987829122692, 17751.81590622787]])
+    lo, up = np.full(2, -131072.0), np.full(2, 131072.0)
+    args = (gf, B, np.zeros(0), np.zeros((0, 2)), np.zeros(0), np.zeros((0, 2)), lo, up, 10.0)
+    exact = _box_qp_minimum(gf, B, lo, up)
+    stalled = solve_elastic_qp(*args, retry_stalled=False)
+    assert stalled.status != "Solved" and stalled.model > 0.5 * exact  # the case the retry is for
+    res = solve_elastic_qp(*args)
+    assert res.ok and res.status == "Solved" and np.all(res.d >= lo) and np.all(res.d <= up)
+    assert res.model == pytest.approx(exact, rel=1e-6)
+
+
 def test_bfgs_update_that_overflows_keeps_the_matrix():
     """CUTEst GAUSS2LS: a trial point whose gradient is 1e200 made r r^T overflow and the
     quasi-Newton matrix infinite, so every later QP failed.  The update is now skipped."""
@@ -177,12 +209,15 @@ def test_penalty_decrease_lowers_an_overgrown_weight():
     assert max(mus) >= 1e4 and any(b < a for a, b in itertools.pairwise(mus))
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(174.787, rel=1e-5)
     # without item 17 but with item 19 this run also ends converged: item 17 is tested alone.  The
-    # weight never falls, and the run crawls for 5,413 N^fg (within item 20's cap of 3,000
-    # iterations; it hit the old cap of 1,000) to a stop at 174.903, not the optimum
+    # weight never falls, and the run crawls: 2,456 N^fg to the optimum (85 with item 17).  Before
+    # item 23's retry of stalled subproblems it crawled for 5,413 N^fg to a stop at 174.903
     old = solve(p, "dynamic-q-plus", penalty_decrease=False, rise_curvature=False, scale_spread=math.inf)
     old_mus = [it["mu"] for it in old.extra["iterations"]]
     assert all(b >= a for a, b in itertools.pairwise(old_mus))
-    assert old.f > 174.787 * (1 + 1e-4) and old.nfg > 10 * r.nfg
+    assert old.nfg > 10 * r.nfg
+    before_23 = solve(p, "dynamic-q-plus", penalty_decrease=False, rise_curvature=False, scale_spread=math.inf,
+                      qp_retry=False)
+    assert before_23.f > 174.787 * (1 + 1e-4) and before_23.nfg > 10 * r.nfg
 
 
 @pytest.mark.parametrize("name, f_opt", [("FLETCHER", 11.656854), ("CRESC4", 0.8718976)])
@@ -191,11 +226,14 @@ def test_constraint_curvature_restores_feasibility_where_the_linearization_canno
     met and the run stopped infeasible after 3 points; CRESC4: the steps stalled at violation 1.5
     while mu ran to its cap.  Where the step removes less than a tenth of the linearized
     infeasibility, the constraints are corrected by their curvatures (3.6), and both reach the
-    best known f feasibly."""
+    best known f feasibly.  CRESC4 as measured before item 23 (``qp_retry=False``): with the retry
+    of stalled subproblems it is the other way round (the default run stops at violation 1.5, where
+    the l1 merit's model has no descent step, and the run without item 18 converges)."""
     p = _s2mpj(name)
-    r = solve(p, "dynamic-q-plus")
+    pin = {"qp_retry": False} if name == "CRESC4" else {}
+    r = solve(p, "dynamic-q-plus", **pin)
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(f_opt, rel=1e-6)
-    off = solve(p, "dynamic-q-plus", stuck_curvature=False)
+    off = solve(p, "dynamic-q-plus", stuck_curvature=False, **pin)
     assert off.status == "failed" and off.max_violation >= 1.0
 
 
@@ -203,12 +241,15 @@ def test_constraint_curvature_after_a_trial_that_raised_the_violation():
     """Item 19.  TRO3X3: plain steps that raise the violation are rejected and corrected in turn
     while the weight climbs to 1e10, and the run stopped at violation 1.5e-6, f 9.00007 (the
     optimum is 9).  With the next QP corrected by the constraints' curvatures (3.6) after such a
-    trial, it converges feasibly to f = 9 within 1e-5."""
+    trial, it converges feasibly to f = 9 within 1e-5.  Both as measured before item 23
+    (``qp_retry=False``): with the retry of stalled subproblems TRO3X3 converges without item 19 too
+    (f = 9.00000004), so part of what item 19 cured there was the stalled subproblem."""
     p = _s2mpj("TRO3X3")
-    r = solve(p, "dynamic-q-plus")
+    r = solve(p, "dynamic-q-plus", qp_retry=False)
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(9.0, rel=1e-5)
-    off = solve(p, "dynamic-q-plus", rise_curvature=False)
+    off = solve(p, "dynamic-q-plus", rise_curvature=False, qp_retry=False)
     assert off.status == "failed" and off.max_violation > 1e-6
+    assert solve(p, "dynamic-q-plus").f == pytest.approx(9.0, rel=1e-6)  # the default, with the retry
 
 
 def test_iteration_cap_lets_a_bfgs_crawl_finish():
@@ -226,12 +267,13 @@ def test_iteration_cap_lets_a_bfgs_crawl_finish():
 def test_self_scaling_ends_a_bfgs_crawl():
     """Item 21.  HEART6LS (n = 6, unconstrained least squares, optimum 0): plain BFGS crawls on
     interior steps that gain more than predicted while B's largest diagonal entry grows, to the cap at
-    f = 0.033; self-scaled, the run converges to the optimum well before the cap."""
+    f = 1.9e-6 (0.033 before item 23's retry of stalled subproblems); self-scaled, the run converges
+    to the optimum well before the cap."""
     p = _s2mpj("HEART6LS")
     r = solve(p, "dynamic-q-plus")
     assert r.status == "converged" and r.f < 1e-10 and r.nit < 1500
     plain = solve(p, "dynamic-q-plus", self_scaling=False)
-    assert plain.status == "max_iter" and plain.f > 0.01
+    assert plain.status == "max_iter" and plain.f > 1e-8
 
 
 def test_stall_test_ends_a_crawl_at_a_degenerate_minimum():
@@ -509,11 +551,12 @@ def test_stationarity_check_at_a_hundredth():
     """PALMER2B (S2MPJ, least squares, optimum 0.623267): the run stops at f = 11.96 where the unit
     model's step is 0.04, a point the check let pass at its former threshold 0.1; at the
     default 0.01 the model is reset there and the run reaches the optimum (item 16).  Both without
-    item 21's self-scaling, with which the run reaches the optimum at either threshold."""
+    item 21's self-scaling, with which the run reaches the optimum at either threshold, and without
+    item 23's retry of stalled subproblems (``qp_retry=False``), with which it does too."""
     p = _s2mpj("PALMER2B")
-    loose = solve(p, "dynamic-q-plus", eps_kkt=0.1, self_scaling=False)
+    loose = solve(p, "dynamic-q-plus", eps_kkt=0.1, self_scaling=False, qp_retry=False)
     assert loose.status == "converged" and loose.f > 10.0 and loose.extra["unit_model_step"] > 0.01
-    r = solve(p, "dynamic-q-plus", self_scaling=False)
+    r = solve(p, "dynamic-q-plus", self_scaling=False, qp_retry=False)
     assert r.status == "converged" and r.f == pytest.approx(0.623267, rel=1e-5)
 
 
