@@ -46,6 +46,7 @@ __all__ = ["DynamicQPlus"]
 
 CURVATURES = ("bfgs", "diagonal", "spherical")
 MU_MAX = 1e10
+EPS = float(np.finfo(float).eps)
 COND_MAX = 1e4  # largest ratio of the diagonal curvatures
 UNIT_QP_WEIGHT = 1e6  # elastic weight of the stationarity measure's QP (`DynamicQPlus._unit_model_step`)
 # the ufunc reductions behind ndarray.max / .all (and .sum, `_qp_subproblem._sum`), called without
@@ -58,6 +59,23 @@ _isfinite = np.isfinite
 def _clip(v: float, lo: float, hi: float) -> float:
     """float(np.clip(v, lo, hi)) for one number (NaN stays NaN), without NumPy's call overhead."""
     return float(min(max(v, lo), hi))
+
+
+def _eigen_safeguard(B: np.ndarray, lo: float, hi: float, rounding_floor: bool) -> np.ndarray:
+    """B with its eigenvalues clipped to [lo, hi] (B itself when none needs it).
+
+    [OWN] item 24, ``rounding_floor``: the small eigenvalues are also kept at or above 100 n eps
+    times the largest one.  The product V diag(w) V^T that rebuilds B, like eigh's eigenvalues
+    themselves, is exact only to about n eps max(w), so a smaller eigenvalue is not there in
+    floating point: with the safeguards' spread of 1e20 (1e-12 .. 1e8) the rebuilt matrix had an
+    eigenvalue of -1.9e-9 or exactly 0 along some directions (CUTEst MARATOSB), s^T B s <= 0
+    along later steps skipped every later BFGS update, and the run crawled on a frozen model."""
+    w, V = np.linalg.eigh(B)
+    if rounding_floor:
+        lo = max(lo, 100.0 * w.size * EPS * min(float(w[-1]), hi))
+    if w[0] < lo or w[-1] > hi:
+        return (V * np.clip(w, lo, hi)) @ V.T
+    return B
 
 
 def _objective_scale(g: np.ndarray) -> float:
@@ -259,6 +277,9 @@ class DynamicQPlus(AbstractSolver):
                                 "s^T y / s^T B s, so that a model made too stiff by earlier steps softens in every "
                                 "direction, not only along the step; False: before item 21 of "
                                 "docs/thesis_solvers.md", "[OWN] item 21; Al-Baali's conditional self-scaling")
+    definite_model: bool = option(True, "keep the BFGS matrix's eigenvalues at or above 100 n eps times its largest "
+                                  "(smaller ones are below the rounding of the matrix, which then can turn "
+                                  "indefinite); False: before item 24 of docs/thesis_solvers.md", "[OWN] item 24")
     qp_retry: bool = option(True, "when Clarabel ends a subproblem short of 'Solved', solve it once more with "
                             "its static regularization at 1e-12 (its default, 1e-8, exceeds the smallest "
                             "curvatures of the models it stalls on) and keep the step with the lower model; "
@@ -340,6 +361,12 @@ class DynamicQPlus(AbstractSolver):
         Bs = B @ dx
         sBs = float(dx @ Bs)
         sy = float(dx @ y)
+        if self.definite_model and not sBs > 0.0 and _all(_isfinite(y), axis=None) and sBs == sBs:
+            # [OWN] item 24: B lost definiteness to rounding (below); without the repair this update and
+            # every later one along such steps is skipped, and the model stays frozen
+            B = _eigen_safeguard(B, self.sigma_min, self.sigma_max, rounding_floor=True)
+            Bs = B @ dx
+            sBs = float(dx @ Bs)
         if not (sBs > 0.0 and _all(_isfinite(y), axis=None)):
             return B
         if self.self_scaling and not first and not lam.size and not nu.size and 0.0 < sy < sBs:
@@ -370,10 +397,7 @@ class DynamicQPlus(AbstractSolver):
             return Bn
         if not _all(_isfinite(Bn), axis=None):  # [OWN] overflow in the outer products (CUTEst GAUSS2LS): no update
             return B_in
-        w, V = np.linalg.eigh(Bn)
-        if w[0] < self.sigma_min or w[-1] > self.sigma_max:
-            Bn = (V * np.clip(w, self.sigma_min, self.sigma_max)) @ V.T
-        return Bn
+        return _eigen_safeguard(Bn, self.sigma_min, self.sigma_max, rounding_floor=False)
 
     def _inside_bounds(self, B: np.ndarray) -> bool:
         """True when B's eigenvalues are surely inside [sigma_min, sigma_max], shown without an

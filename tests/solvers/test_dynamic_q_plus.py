@@ -8,13 +8,14 @@ import math
 import cvxpy as cp
 import numpy as np
 import pytest
+from scipy.linalg.lapack import dpotrf
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from problems import Oracle, hs
 from solvers._qp_subproblem import l1_model, solve_elastic_qp
 from solvers._solve import solve
-from solvers.dynamic_q_plus import DynamicQPlus, _exact_constraint_jacobians, _ScaledVariables
+from solvers.dynamic_q_plus import DynamicQPlus, _eigen_safeguard, _exact_constraint_jacobians, _ScaledVariables
 
 
 def _instance(seed: int, n: int, p: int, q: int):
@@ -407,6 +408,58 @@ def test_inside_bounds_agrees_with_eigh(seed, n, log_scale):
     ev = np.linalg.eigvalsh(B)
     if solver._inside_bounds(B):
         assert ev[0] >= solver.sigma_min and ev[-1] <= solver.sigma_max
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.integers(0, 10_000), st.integers(2, 12), st.floats(-16, 0), st.floats(0, 10))
+def test_eigen_safeguard_keeps_the_model_positive_definite(seed, n, log_lo, log_hi):
+    """Item 24: whatever the spread of B's eigenvalues, the safeguarded matrix has s^T B s > 0
+    along every direction tried, its eigenvectors' included, and a Cholesky factor."""
+    rng = np.random.default_rng(seed)
+    V = np.linalg.qr(rng.normal(size=(n, n)))[0]
+    B = (V * np.sort(10.0 ** rng.uniform(log_lo, log_hi, n))) @ V.T
+    B = 0.5 * (B + B.T)
+    out = _eigen_safeguard(B, 1e-12, 1e8, rounding_floor=True)
+    w, W = np.linalg.eigh(out)
+    for s in np.vstack([W.T, V.T, rng.normal(size=(20, n))]):
+        assert s @ out @ s > 0.0
+    assert dpotrf(out, lower=1, clean=0, overwrite_a=0)[1] == 0
+    assert w[-1] <= 1e8 * (1 + 1e-12)
+
+
+def test_clipped_bfgs_matrix_keeps_being_updated():
+    """Item 24 (CUTEst MARATOSB): an update whose eigenvalues the safeguard clips at 1e-12 and
+    1e8, in a rotated frame, is rebuilt as V diag(w) V^T, exact only to about n eps 1e8: along
+    its small eigenvector s^T B s comes out 0 (or negative), so the next update along that
+    direction was skipped, and so was every later one there: the model froze.  Now such a B
+    is first safeguarded with the floor of 100 n eps times its largest eigenvalue and then
+    updated; with definite_model=False (the code before item 24) the update is skipped."""
+    n, none = 2, np.zeros(0)
+    old = {"g": np.zeros(n), "ineq_jac": np.zeros((0, n)), "eq_jac": np.zeros((0, n))}
+    for definite in (True, False):
+        solver = DynamicQPlus(definite_model=definite)
+        # from diag(1, 1e-12), a step along e1 that measures a huge curvature coupled to e2: the exact
+        # update has eigenvalues of about 5e-13 and 2e9, clipped to 1e-12 and 1e8
+        B = solver._bfgs(np.diag([1.0, 1e-12]), 1.0, old, {**old, "g": np.array([1e9, 5e8])}, none, none,
+                         np.array([1.0, 0.0]), first=False)
+        s = 1e-3 * np.linalg.eigh(B)[1][:, 0]
+        assert s @ B @ s <= 0.0  # the rounding, the same either way
+        after = solver._bfgs(B, 1.0, old, {**old, "g": 1e-3 * s}, none, none, s, first=False)
+        assert (not np.array_equal(after, B)) == definite
+        if definite:
+            assert s @ after @ s > 0.0 and dpotrf(after, lower=1, clean=0, overwrite_a=0)[1] == 0
+
+
+def test_repaired_model_lets_a_frozen_run_finish():
+    """Item 24 on MARATOSB (S2MPJ; f = x1 + 1e6 (x1^2 + x2^2 - 1)^2, minimum -1 at (-1, 0)): the
+    BFGS matrix, clipped to eigenvalues 1e-12 and 1e8 in a rotated frame, came out indefinite,
+    every later update was skipped, and the run crawled, then stopped at f = 0.92 on the far side
+    of the circle.  Repaired, the model keeps learning and the run reaches the minimum."""
+    p = _s2mpj("MARATOSB")
+    r = solve(p, "dynamic-q-plus")
+    assert r.status == "converged" and r.f == pytest.approx(-1.0, abs=1e-6)
+    frozen = solve(p, "dynamic-q-plus", definite_model=False)
+    assert frozen.f > 0.5
 
 
 def test_scaled_variables_follow_the_chain_rule():
