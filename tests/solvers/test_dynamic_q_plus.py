@@ -8,9 +8,9 @@ import math
 import cvxpy as cp
 import numpy as np
 import pytest
-from scipy.linalg.lapack import dpotrf
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scipy.linalg.lapack import dpotrf
 
 from problems import Oracle, hs
 from solvers._qp_subproblem import l1_model, solve_elastic_qp
