@@ -277,9 +277,11 @@ class DynamicQPlus(AbstractSolver):
                                 "s^T y / s^T B s, so that a model made too stiff by earlier steps softens in every "
                                 "direction, not only along the step; False: before item 21 of "
                                 "docs/thesis_solvers.md", "[OWN] item 21; Al-Baali's conditional self-scaling")
-    definite_model: bool = option(True, "keep the BFGS matrix's eigenvalues at or above 100 n eps times its largest "
-                                  "(smaller ones are below the rounding of the matrix, which then can turn "
-                                  "indefinite); False: before item 24 of docs/thesis_solvers.md", "[OWN] item 24")
+    definite_model: bool = option(True, "where a BFGS update meets s^T B s <= 0 (a matrix that the rounding of the "
+                                  "eigenvalue safeguard left indefinite), first raise B's small eigenvalues to "
+                                  "100 n eps times its largest and then update, instead of skipping this update "
+                                  "and every later one along such steps; False: before item 24 of "
+                                  "docs/thesis_solvers.md", "[OWN] item 24")
     qp_retry: bool = option(True, "when Clarabel ends a subproblem short of 'Solved', solve it once more with "
                             "its static regularization at 1e-12 (its default, 1e-8, exceeds the smallest "
                             "curvatures of the models it stalls on) and keep the step with the lower model; "
@@ -361,13 +363,14 @@ class DynamicQPlus(AbstractSolver):
         Bs = B @ dx
         sBs = float(dx @ Bs)
         sy = float(dx @ y)
-        if self.definite_model and not sBs > 0.0 and _all(_isfinite(y), axis=None) and sBs == sBs:
+        finite = _all(_isfinite(y), axis=None)
+        if self.definite_model and finite and sBs <= 0.0:
             # [OWN] item 24: B lost definiteness to rounding (below); without the repair this update and
             # every later one along such steps is skipped, and the model stays frozen
             B = _eigen_safeguard(B, self.sigma_min, self.sigma_max, rounding_floor=True)
             Bs = B @ dx
             sBs = float(dx @ Bs)
-        if not (sBs > 0.0 and _all(_isfinite(y), axis=None)):
+        if not (sBs > 0.0 and finite):
             return B
         if self.self_scaling and not first and not lam.size and not nu.size and 0.0 < sy < sBs:
             # [OWN] item 21: Al-Baali's conditional self-scaling (JOTA 96, 1998), tau = min(1, s^T y / s^T B s).
