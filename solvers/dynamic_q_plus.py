@@ -282,6 +282,11 @@ class DynamicQPlus(AbstractSolver):
                                   "100 n eps times its largest and then update, instead of skipping this update "
                                   "and every later one along such steps; False: before item 24 of "
                                   "docs/thesis_solvers.md", "[OWN] item 24")
+    probe_model: bool = option(True, "where a stopping test meets a point far from stationary (as eps_kkt) after a "
+                               "reset has happened in the run, and the model has had at most n updates since the "
+                               "last one, take the model's short step once at that point (to gain its secant "
+                               "pair; a rejected probe leaves the move limit) instead of resetting again; False: "
+                               "before item 25 of docs/thesis_solvers.md", "[OWN] item 25")
     qp_retry: bool = option(True, "when Clarabel ends a subproblem short of 'Solved', solve it once more with "
                             "its static regularization at 1e-12 (its default, 1e-8, exceeds the smallest "
                             "curvatures of the models it stalls on) and keep the step with the lower model; "
@@ -602,6 +607,7 @@ class DynamicQPlus(AbstractSolver):
         mu_lowered = math.inf  # [OWN] the weight the last decrease set; raised past it, never lowered again
         log: list[dict[str, Any]] = []
         n_rej = 0
+        x_probe = None  # [OWN] item 25: the last point whose model step was taken as a probe
         n_reset, x_reset = 0, None  # [OWN] resets to the unit model by the stationarity check, and where the last was
         restarted, s_last = False, 1.0  # [OWN] one restart of the quasi-Newton matrix before stopping
         recent: list[dict[str, Any]] = [ev]  # [OWN] non-monotone reference: last accepted points
@@ -612,6 +618,7 @@ class DynamicQPlus(AbstractSolver):
         # [OWN] item 22: unscaled f after each of the last accepted full steps between feasible points
         window: list[float] = []
         for it in range(1, self.max_iter + 1):
+            probing = False
             d_lo, d_up = np.maximum(lo - x, -rho), np.minimum(up - x, rho)  # simple bounds (3.7), move limit (3.8)
             res = self._qp(ev["g"], sigma, ev["ineq"], ev["ineq_jac"], ev["eq"], ev["eq_jac"], d_lo, d_up, mu)
             if not res.ok:  # [OWN] numerical trouble in the QP solver: retry with a smaller move limit
@@ -698,14 +705,24 @@ class DynamicQPlus(AbstractSolver):
                 # same point once a trial has been evaluated since (item 16), with the move limit
                 # as the rejections left it, so the run is a trust region on that model until a
                 # step is accepted or the limit collapses (a repeat needs a trial evaluated since)
-                if chi > self.eps_kkt and (x is not x_reset or n_upd > 0):
+                # [OWN] item 25: but where resets recur and the model has had at most n updates since the
+                # last, its short step says only that its curvatures are too large: after a reset the first
+                # update scales the whole matrix by one curvature, the largest (POWELLBSLS, a valley 1e8
+                # times stiffer across than along: every cycle of reset, rejected unit-model steps and one
+                # update moved f by 1e-13).  The step is taken once at that point, for its secant pair
+                probing = (self.probe_model and chi > self.eps_kkt and n_reset > 0 and 0 < n_upd <= oracle.n
+                           and x is not x_probe and dn > 0.0 and pred > 0.0)
+                if probing:
+                    x_probe = x
+                elif chi > self.eps_kkt and (x is not x_reset or n_upd > 0):
                     if x is not x_reset:
                         rho = max(rho, chi * xs)
                     sigma = self._unit_model(ev, x, sf, oracle.n)
                     n_upd, n_reset, x_reset = 0, n_reset + 1, x
                     continue
-                return SolverOutput(x, Status.CONVERGED, "feasible and step / predicted reduction below tolerance",
-                                    nit=it, extra=self._extra(log, n_rej, chi, n_reset))
+                else:
+                    return SolverOutput(x, Status.CONVERGED, "feasible and step / predicted reduction below "
+                                        "tolerance", nit=it, extra=self._extra(log, n_rej, chi, n_reset))
             if (dn == 0.0 or pred <= 0.0) and viol > self.eps_c and mu < MU_MAX:
                 mu *= 10.0  # [OWN] stationary for the merit but infeasible: weigh feasibility more
                 continue
@@ -739,7 +756,7 @@ class DynamicQPlus(AbstractSolver):
             log.append({"i": it, "f": ev["f"], "max_violation": viol, "rho": rho,
                         "sigma": sigma.diagonal().copy() if sigma.ndim == 2 else sigma, "mu": mu,
                         "ratio": ratio, "elastic": res.elastic, "pred": pred, "dn": dn,
-                        "soc": n_soc_step})
+                        "soc": n_soc_step, "probe": probing})
             lam_new, nu_new = res.lam, res.nu
             dx = xt - x
             if ok:
@@ -796,7 +813,8 @@ class DynamicQPlus(AbstractSolver):
                 recent = (recent + [evt])[-self.memory:]
             else:
                 n_rej += 1
-                rho = self.shrink * dn
+                if not probing:  # the probe's step was far inside the limit: shrinking to it would collapse it
+                    rho = self.shrink * dn
                 # [OWN] the model's first curvature is not taken from a trial whose curvature (3.6) is
                 # beyond the cap: the model would start at sigma_max in every direction and keep it in
                 # those its steps do not explore (OSBORNEA, SSBRYBND: overflowing exponentials at the

@@ -458,9 +458,25 @@ def test_repaired_model_lets_a_frozen_run_finish():
     p = _s2mpj("MARATOSB")
     r = solve(p, "dynamic-q-plus")
     assert r.status == "converged" and r.f == pytest.approx(-1.0, abs=1e-6)
-    frozen = solve(p, "dynamic-q-plus", definite_model=False)
+    # without item 25's probe too: probing the frozen model's short steps carries the run on to
+    # f = -0.94 at the cap, which would hide what the repair does
+    frozen = solve(p, "dynamic-q-plus", definite_model=False, probe_model=False)
     assert frozen.f > 0.5
 
+
+def test_probe_of_a_short_model_step_crosses_a_stiff_valley():
+    """Item 25 on POWELLBSLS (S2MPJ; Powell's badly scaled function, minimum 0): after each reset
+    to the unit model the first BFGS update scaled the whole matrix by the valley's cross
+    curvature, 1e8 times its curvature along the valley, so the next step was short, the
+    stopping test met a point far from stationary, and the model was reset again: the run
+    crawled around the cycle and stopped at f = 0.135.  Probing the short step once at such a
+    point gives the model its secant pair along the valley, and the run reaches the minimum."""
+    p = _s2mpj("POWELLBSLS")
+    r = solve(p, "dynamic-q-plus")
+    assert r.status == "converged" and r.f < 1e-7
+    assert any(e["probe"] for e in r.extra["iterations"])
+    cycling = solve(p, "dynamic-q-plus", probe_model=False)
+    assert cycling.f > 0.1 and not any(e["probe"] for e in cycling.extra["iterations"])
 
 def test_scaled_variables_follow_the_chain_rule():
     """In y = x / s the oracle's gradients and Jacobians are s times the x ones (checked against
