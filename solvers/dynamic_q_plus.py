@@ -781,10 +781,12 @@ class DynamicQPlus(AbstractSolver):
                 interior = dn < 0.99 * rho  # the full QP step, not cut by the move limit
                 x, ev = xt, evt
                 full_feasible = informed and interior and viol <= self.eps_c and evt["viol"] <= self.eps_c
-                # [OWN] item 22: a crawl.  Near a minimizer where f is flatter than quadratic (DENSCHND,
-                # WATSON: every step gains 4x what the BFGS model predicts) the steps and the predicted
-                # reductions stay above their tests while f falls by 1e-13 per step, to the cap or the
-                # time limit.  At this rate the remaining iterations could not move f by 1e-7.
+                # [OWN] item 22: a crawl.  Near a degenerate minimizer (DENSCHND's is quartic; WATSON)
+                # every step gains what the BFGS model predicts (the logged ratio reads 4 only because
+                # the non-monotone reference is the worst of the last 4 accepted points), yet the steps
+                # and the predicted reductions stay above their tests while f falls by 1e-13 per step,
+                # to the cap or the time limit.  At this rate the remaining iterations could not move
+                # f by 1e-7.
                 window = (window + [float(evt["raw"]["f"])])[-self.stall_window - 1:] if full_feasible else []
                 stop = None
                 if full_feasible and ratio >= 0.75 and f_change < self.eps_df:

@@ -278,9 +278,9 @@ def test_self_scaling_ends_a_bfgs_crawl():
 
 
 def test_stall_test_ends_a_crawl_at_a_degenerate_minimum():
-    """Item 22.  DENSCHND (n = 3, optimum 0, f quartic near it): every interior step gains 4x what
-    the BFGS model predicts while f falls by about 1e-11 per step, and without the stall test the run
-    goes to the cap.  With it, 15 full steps that together lower f by under 1e-10 (1 + |f|) send
+    """Item 22.  DENSCHND (n = 3, optimum 0, f quartic near it): every interior step gains about
+    what the BFGS model predicts while f falls by about 1e-11 per step, and without the stall test
+    the run goes to the cap.  With it, 15 full steps that together lower f by under 1e-10 (1 + |f|) send
     the run to the stopping path (a restart, then the step test) well before the cap, at an end
     within 1e-8 of the optimum."""
     p = _s2mpj("DENSCHND")
