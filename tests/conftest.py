@@ -8,3 +8,14 @@ and thesis-count tests about the code, not about the machine.
 from harness._blas import pin_blas
 
 pin_blas(threads=False)
+
+# Property tests draw the same examples on every run (the project's rule: same inputs, same
+# results; a CI run must not turn red on an example no earlier run drew).  To search afresh,
+# as when developing: HYPOTHESIS_PROFILE=explore python -m pytest ...
+import os  # noqa: E402
+
+from hypothesis import settings  # noqa: E402
+
+settings.register_profile("deterministic", derandomize=True, database=None, print_blob=True)
+settings.register_profile("explore", derandomize=False)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "deterministic"))
