@@ -56,6 +56,7 @@ def test_elastic_qp_stalled_with_a_large_weight():
     res = solve_elastic_qp(gf, sigma, g0, Jg, np.zeros(0), np.zeros((0, 1)), -box, box, 1e6)
     assert res.d == pytest.approx(-gf / sigma, rel=1e-6)
 
+
 @settings(max_examples=25, deadline=None)
 @given(st.integers(0, 10_000), st.integers(1, 6), st.integers(0, 4))
 def test_elastic_qp_kkt_when_not_elastic(seed, n, p):
@@ -489,6 +490,7 @@ def test_probe_of_a_short_model_step_crosses_a_stiff_valley():
     assert any(e["probe"] for e in r.extra["iterations"])
     cycling = solve(p, "dynamic-q-plus", probe_model=False)
     assert cycling.f > 0.1 and not any(e["probe"] for e in cycling.extra["iterations"])
+
 
 def test_scaled_variables_follow_the_chain_rule():
     """In y = x / s the oracle's gradients and Jacobians are s times the x ones (checked against
