@@ -262,9 +262,12 @@ def plot(suite: str, kind: str, out: str | os.PathLike[str] = "results", problem
         raise HarnessArgumentError(f"unknown plot kind {kind!r}; valid kinds: {', '.join(KINDS)}")
     runs = load_results(suite, out) if runs is None else runs
     if suite in CAMPAIGN_SUITES:
+        from ._best_known import best_known_values
+        from ._reference import load_reference
         from .tables._campaign import classify_runs
 
-        runs = runs.assign(success=(classify_runs(runs)["outcome"] == "solved").to_numpy())
+        known = best_known_values(load_reference(out, suite))  # the tables' reference values
+        runs = runs.assign(success=(classify_runs(runs, known)["outcome"] == "solved").to_numpy())
     outdir = pathlib.Path(out) / suite / "figures"
     if kind == "log-ratio":
         return _log_ratios(suite, runs, outdir)

@@ -9,6 +9,10 @@ when a table is rendered.  A suite's analysis module (`REFERENCE_MODULES`) defin
 updates it after the runs (only what is missing: the polish of a new end, or everything
 when the analysis code changed), ``python -m harness reference --suite S`` does it alone,
 and ``harness table`` only reads it.  Docs: docs/harness.md, "Stored references".
+
+A module that sets ``PERSISTENT = True`` stores data that outlives changes of its code: the
+campaigns' best-known points (`harness._best_known`) are points runs reached, not analyses
+to redo, so only ``fresh`` rebuilds them.
 """
 
 from __future__ import annotations
@@ -31,6 +35,8 @@ REFERENCE_MODULES: dict[str, str] = {
     "rpr2-exact": "manipulators.synthesis.rpr2_exact_suite",
     "rpr3": "manipulators.synthesis.rpr3_exact",
     "rpr3-exact": "manipulators.synthesis.rpr3_exact",
+    "cutest": "harness._best_known",
+    "hs-all": "harness._best_known",
 }
 
 FILENAME = "reference.json"
@@ -56,21 +62,24 @@ def load_reference(out: str | os.PathLike[str], suite: str) -> dict[str, Any]:
 def update_reference(out: str | os.PathLike[str], suite: str, runs: pd.DataFrame | None,
                      fresh: bool = False) -> pathlib.Path | None:
     """Compute what is missing from ``suite``'s stored reference and write it; None if the
-    suite has none.  ``fresh`` (or a changed analysis module) recomputes everything."""
+    suite has none.  ``fresh`` (or a changed analysis module, unless it is ``PERSISTENT``)
+    recomputes everything."""
     if suite not in REFERENCE_MODULES:
         return None
     modname = REFERENCE_MODULES[suite]
+    module = importlib.import_module(modname)
+    keep = bool(getattr(module, "PERSISTENT", False))
     version = code_version((modname,))
     path = reference_path(out, suite)
     stored: dict[str, Any] = {}
     if not fresh and path.exists():
         try:
             doc = json.loads(path.read_text())
-            if doc.get("code_version") == version:
+            if keep or doc.get("code_version") == version:
                 stored = dict(doc.get("data") or {})
         except (OSError, ValueError):
             stored = {}
-    data = importlib.import_module(modname).reference(runs, stored)
+    data = module.reference(runs, stored)
     if data == stored and path.exists():
         return path
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -137,10 +137,13 @@ def _parser() -> argparse.ArgumentParser:
                     "in OptiProfiler's experiment layout")
 
     rf = sub.add_parser("reference", help="compute and store what a suite's tables read from exact models "
-                        "(rpr2, rpr3; docs/harness.md)")
+                        "(rpr2, rpr3) or its best-known points (cutest, hs-all; docs/harness.md)")
     rf.add_argument("--suite", required=True)
     rf.add_argument("--out", default="results")
-    rf.add_argument("--fresh", action="store_true", help="recompute every entry, not only the missing ones")
+    rf.add_argument("--fresh", action="store_true", help="recompute every entry, not only the missing ones "
+                    "(best-known points: rebuild from the stored runs alone)")
+    rf.add_argument("--verify", action="store_true", help="cutest, hs-all: re-evaluate every stored best-known "
+                    "point through the problem's own functions; exit 1 if any f or feasibility disagrees")
 
     b = sub.add_parser("baseline", help="save the deterministic counts of stored runs as a baseline")
     b.add_argument("--suite", required=True)
@@ -307,12 +310,33 @@ def _cmd_reference(a: argparse.Namespace) -> int:
     if a.suite not in REFERENCE_MODULES:
         raise HarnessArgumentError(f"suite {a.suite!r} has no stored reference; suites with one: "
                                    f"{', '.join(REFERENCE_MODULES)}")
+    if a.verify:
+        return _verify_best_known(a)
     try:
         runs = load_results(a.suite, a.out)
     except NoResults:
         runs = None  # the run-independent part (exact optima) is still useful
     print(update_reference(a.out, a.suite, runs, fresh=a.fresh))
     return 0
+
+
+def _verify_best_known(a: argparse.Namespace) -> int:
+    from . import _best_known
+    from ._reference import REFERENCE_MODULES, load_reference
+    from ._runner import resolve_suite
+    from ._suites import load_suite
+
+    if REFERENCE_MODULES[a.suite] != _best_known.__name__:
+        raise HarnessArgumentError(f"--verify checks best-known points; suite {a.suite!r} stores an exact-model "
+                                   "analysis instead")
+    stored = load_reference(a.out, a.suite)
+    report = _best_known.verify(load_suite(resolve_suite(a.suite)), stored)
+    bad = report[~report["ok"]]
+    for r in bad.itertuples():
+        print(f"{r.case_id}: {r.why}")
+    print(f"{a.suite}: {len(report) - len(bad)} of {len(report)} stored best-known points verified"
+          + (f", {len(bad)} not" if len(bad) else ""))
+    return 1 if len(bad) else 0
 
 
 def _cmd_baseline(a: argparse.Namespace) -> int:

@@ -1,8 +1,9 @@
 """Tables of a campaign over a problem library (suites ``cutest``, ``hs-all``; docs/cutest.md).
 
 Reference value of a case: its known optimum (``f_ref``: the verified Hock–Schittkowski
-values) where there is one, otherwise the best feasible f that any stored run reached, as
-in Moré & Wild's data profiles and OptiProfiler.  A run *solves* a case when its returned
+values) where there is one, otherwise the best feasible f that any run reached, as in Moré
+& Wild's data profiles and OptiProfiler: the stored runs' best, or the suite's stored
+best-known point where an earlier run got lower (`harness._best_known`).  A run *solves* a case when its returned
 point is feasible (violation <= `FEAS_TOL`) and E^r = |f - f_ref| / (1 + |f_ref|) <=
 `SOLVED_ER` (eq. 3.12), the rule of the thesis's Table 3.1.  An infeasible end is never
 solved, whatever its f.
@@ -10,7 +11,9 @@ solved, whatever its f.
 
 from __future__ import annotations
 
+import json
 import math
+from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
@@ -19,15 +22,23 @@ from .._profiles import solver_labels
 from .._store import failure_kind
 from ._base import Table, count
 
-__all__ = ["reference_values", "classify_runs", "campaign_tables", "common_limit", "judged_under", "SOLVED_ER",
-           "FEAS_TOL"]
+__all__ = ["reference_values", "classify_runs", "campaign_tables", "common_limit", "judged_under", "clock_stopped",
+           "SOLVED_ER", "FEAS_TOL"]
 
 SOLVED_ER = 1e-5
 FEAS_TOL = 1e-6
 
 
-def reference_values(runs: pd.DataFrame) -> pd.DataFrame:
-    """Per case: ``f_ref`` and its source ("known optimum" or "best found"); NaN when none."""
+#: ref_source of a case whose stored best-known point is lower than every stored run's end
+EARLIER = "best known (earlier run)"
+
+
+def reference_values(runs: pd.DataFrame, best_known: Mapping[str, float] | None = None) -> pd.DataFrame:
+    """Per case: ``f_ref`` and its source: "known optimum", "best found" (the lower of the
+    stored runs' best feasible f and ``best_known[case]``, the suite's stored best-known f of
+    `harness._best_known`), `EARLIER` (the stored f, where it is lower than every stored
+    run's by more than the solved tolerance) or "none feasible" (NaN)."""
+    best_known = best_known or {}
     out = []
     for case, g in runs.groupby("case_id", sort=True):
         known = pd.to_numeric(g["f_ref"], errors="coerce")
@@ -36,9 +47,30 @@ def reference_values(runs: pd.DataFrame) -> pd.DataFrame:
             out.append({"case_id": case, "ref": ref, "ref_source": "known optimum"})
             continue
         feas = g[(pd.to_numeric(g["max_violation"], errors="coerce") <= FEAS_TOL) & np.isfinite(g["f"])]
-        out.append({"case_id": case, "ref": float(feas["f"].min()) if len(feas) else math.nan,
-                    "ref_source": "best found" if len(feas) else "none feasible"})
+        found = float(feas["f"].min()) if len(feas) else math.nan
+        kept = float(best_known.get(str(case), math.nan))
+        if math.isfinite(kept) and not kept >= found:  # lower than every stored run, or none is feasible
+            # named for where it came from only when no stored run is within the solved tolerance of it
+            near = (found - kept) / (1 + abs(kept)) <= SOLVED_ER
+            out.append({"case_id": case, "ref": kept, "ref_source": "best found" if near else EARLIER})
+        else:
+            out.append({"case_id": case, "ref": found, "ref_source": "best found" if len(feas) else "none feasible"})
     return pd.DataFrame(out, columns=["case_id", "ref", "ref_source"])
+
+
+def clock_stopped(runs: pd.DataFrame) -> pd.Series:
+    """Runs that stopped early with an answer because of the wall clock (a multistart search
+    at the harness's deadline or its ``max_time``: ``extra["stopped_by"]``).  How far such a
+    run got depends on the machine's speed, so its row is not reproducible to the digit."""
+
+    def stopped(extra: object) -> bool:
+        try:
+            return json.loads(str(extra)).get("stopped_by") in ("deadline", "max_time")
+        except (ValueError, AttributeError):
+            return False
+
+    col = runs["extra"] if "extra" in runs else pd.Series("{}", index=runs.index)
+    return col.map(stopped).astype(bool)
 
 
 def common_limit(runs: pd.DataFrame) -> float:
@@ -84,11 +116,13 @@ def _outcome(r: pd.Series) -> str:
     return "cap" if r["status"] == "max_iter" else "other point"
 
 
-def classify_runs(runs: pd.DataFrame) -> pd.DataFrame:
-    """The runs with ``label``, ``ref``, ``ref_source``, ``er`` and ``outcome`` columns, every
-    run judged under the campaign's common wall-clock limit (`common_limit`)."""
+def classify_runs(runs: pd.DataFrame, best_known: Mapping[str, float] | None = None) -> pd.DataFrame:
+    """The runs with ``label``, ``ref``, ``ref_source``, ``er``, ``outcome`` and ``clock_stopped``
+    columns, every run judged under the campaign's common wall-clock limit (`common_limit`);
+    ``best_known``: the suite's stored best-known f per case (`reference_values`)."""
     runs = judged_under(runs, common_limit(runs))
-    df = runs.assign(label=solver_labels(runs)).merge(reference_values(runs), on="case_id", how="left")
+    df = (runs.assign(label=solver_labels(runs), clock_stopped=clock_stopped(runs))
+          .merge(reference_values(runs, best_known), on="case_id", how="left"))
     df["er"] = (df["f"] - df["ref"]).abs() / (1 + df["ref"].abs())
     df["outcome"] = [_outcome(r) for _, r in df.iterrows()]
     return df
@@ -115,6 +149,7 @@ def _summary(df: pd.DataFrame, order: list[str], defaults: bool = True) -> Table
             "other point": int(out.get("other point", 0)), "infeasible end": int(out.get("infeasible", 0)),
             "cap": int(out.get("cap", 0)), "error": int(out.get("error", 0)), "timeout": int(out.get("timeout", 0)),
             "infrastructure": int(out.get("infrastructure", 0)),
+            "cut by the clock": int(mine["clock_stopped"].sum()),
             "commonly solved": len(nfg_common),
             "median N^fg (commonly solved)": float(np.median(nfg_common)) if nfg_common else math.nan,
             "median N^fg (solved)": float(solved.loc[solved["label"] == lab, "nfg"].astype(float).median()),
@@ -127,12 +162,20 @@ def _summary(df: pd.DataFrame, order: list[str], defaults: bool = True) -> Table
         "reference value (eq. 3.12); an infeasible end is never solved. "
         + ("Every solver ran with its defaults." if defaults else "Each solver ran with the suite's settings."),
         "Reference values: " + ", ".join(f"{v} case{'s' * (v != 1)} {k}" for k, v in refs.items())
-        + " ('best found': the best feasible f any stored run reached, as in Moré-Wild data profiles).",
+        + " ('best found': the best feasible f any run reached, as in Moré-Wild data profiles; the suite keeps "
+        "the point of every case's lowest end in reference.json, so a reference only ever goes down and a re-run "
+        f"that ends higher moves no other solver's count; '{EARLIER}': no stored run is within the solved "
+        "tolerance of that kept point's f).",
         f"Commonly solved: the {len(common)} cases that every solver which ran on them solved; medians of N^fg over "
         "them compare like with like.",
         "Outcomes: other point = feasible, converged elsewhere (a local minimum or a stop short of the reference); "
         "cap = iteration or evaluation cap; error = the solver or problem raised; infrastructure = the worker died.",
     ]
+    cut = int(df["clock_stopped"].sum())
+    if cut:
+        notes.append(f"Cut by the clock: {cut} run{'s' * (cut != 1)} (multistart searches) stopped early with an "
+                     "answer because the run's time limit was near; how many local runs fitted depends on the "
+                     "machine's speed, so these rows can differ between re-runs (marked @ in the per-run table).")
     limit = common_limit(df)
     if math.isfinite(limit):
         late = int(df["over_limit"].sum())
@@ -158,18 +201,21 @@ def _per_case(df: pd.DataFrame, order: list[str]) -> Table:
                 row[lab] = "n/a"
             else:
                 nfg = count(r["nfg"])
-                row[lab] = f"{'' if nfg is None else nfg}{marks[r['outcome']]}"
+                row[lab] = f"{'' if nfg is None else nfg}{marks[r['outcome']]}{'@' * bool(r['clock_stopped'])}"
         rows.append(row)
     notes = ["Cells: N^fg of the run, then its outcome: (none) solved, * feasible elsewhere, ! infeasible end, "
-             "$ cap, ~ error, t timeout, x infrastructure failure; n/a the solver does not handle the problem."]
+             "$ cap, ~ error, t timeout, x infrastructure failure; n/a the solver does not handle the problem; "
+             "@ cut by the clock (stopped early with an answer: depends on the machine's speed)."]
     return Table(name="campaign_runs", title="N^fg and outcome of every run", frame=pd.DataFrame(rows), notes=notes)
 
 
 def campaign_tables(runs: pd.DataFrame, solver_order: list[str] | None = None, prefix: str = "campaign",
-                    suite: str = "", defaults: bool = True) -> list[Table]:
+                    suite: str = "", defaults: bool = True,
+                    best_known: Mapping[str, float] | None = None) -> list[Table]:
     """The summary and per-run tables, named ``<prefix>_summary`` and ``<prefix>_runs``;
-    ``defaults``: every solver ran at its defaults (the notes say so), as in cutest and hs-all."""
-    df = classify_runs(runs)
+    ``defaults``: every solver ran at its defaults (the notes say so), as in cutest and hs-all;
+    ``best_known``: the suite's stored best-known f per case (`reference_values`)."""
+    df = classify_runs(runs, best_known)
     labels = list(dict.fromkeys(solver_order or [])) + sorted(set(df["label"]) - set(solver_order or []))
     labels = [lab for lab in labels if lab in set(df["label"])]
     out = [_summary(df, labels, defaults), _per_case(df, labels)]

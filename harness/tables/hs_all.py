@@ -2,13 +2,19 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import Any
+
 import pandas as pd
 
+from .._best_known import best_known_values
 from ._base import Table
 from ._campaign import campaign_tables
 
 
-def tables(runs: pd.DataFrame) -> list[Table]:
+def tables(runs: pd.DataFrame, reference: Mapping[str, Any] | None = None) -> list[Table]:
+    """``reference``: the suite's stored best-known points (`harness._best_known`)."""
     from problems.s2mpj.hs_all_suite import SOLVERS
 
-    return campaign_tables(runs, list(SOLVERS), prefix="hs_all", suite="hs-all")
+    return campaign_tables(runs, list(SOLVERS), prefix="hs_all", suite="hs-all",
+                           best_known=best_known_values(dict(reference or {})))
