@@ -232,12 +232,20 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     if not ok and mu > 1.0:
         # [OWN] the same QP with its objective divided by mu (the same minimizer; the duals
         # scale by 1/mu): the slack costs become 1 instead of up to 1e10
-        Ps = P.as_lists()
-        Ps.data = (np.asarray(P.data, dtype=float) / mu).tolist()
-        v, z, status, ok = _clarabel_solve(Ps, (gf / mu).tolist() + [1.0] * ne, A_lists, b, cones)
-        z = z * mu
+        v, z, status, ok = _scaled_solve(P, gf, mu, ne, A_lists, b, cones, mu)
     d = np.minimum(np.maximum(v[:n], d_lo), d_up) if ok else np.zeros(n)  # np.clip, without its wrapper
     model = l1_model(d, gf, sigma, g0, Jg, h0, Jh, mu)
+    if retry_stalled and status == "MaxIterations" and mu > 1.0:
+        # [OWN] item 26: with a large weight the interior point can cycle until its iteration cap
+        # far from the minimizer (one variable, mu = 1e6: model 0.90 where the minimizer's is
+        # -0.03).  The QP divided by sqrt(mu) balances the slack costs against f's gradient; the
+        # model is the QP's objective, so the lower one wins.
+        v2, z2, status2, ok2 = _scaled_solve(P, gf, mu, ne, A_lists, b, cones, float(np.sqrt(mu)))
+        if ok2:
+            d2 = np.minimum(np.maximum(v2[:n], d_lo), d_up)
+            model2 = l1_model(d2, gf, sigma, g0, Jg, h0, Jh, mu)
+            if not ok or model2 < model:
+                v, z, status, ok, d, model = v2, z2, status2, ok2, d2, model2
     if retry_stalled and status != "Solved":
         # [OWN] item 23: Clarabel's regularization (1e-8) above the model's smallest curvatures
         # stalls the interior point ("InsufficientProgress", "AlmostSolved") at a step far from
@@ -252,6 +260,16 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     lam = np.maximum(z[q:q + p], 0.0) if ok else np.zeros(p)
     elastic = float(_sum(v[n:], axis=None)) if ok else 0.0
     return ElasticQPResult(d, lam, nu, elastic, model, ok, status)
+
+
+def _scaled_solve(P: _CscView, gf: np.ndarray, mu: float, ne: int, A: _CscView, b: list[float], cones: list,
+                  scale: float) -> tuple[np.ndarray, np.ndarray, str, bool]:
+    """`_clarabel_solve` of the elastic QP with its objective divided by ``scale`` (the same
+    minimizer); the duals are returned at the QP's own scale."""
+    Ps = P.as_lists()
+    Ps.data = (np.asarray(P.data, dtype=float) / scale).tolist()
+    v, z, status, ok = _clarabel_solve(Ps, (gf / scale).tolist() + [mu / scale] * ne, A, b, cones)
+    return v, z * scale, status, ok
 
 
 def _clarabel_solve(P: _CscView, c: list[float], A: _CscView, b: list[float], cones: list,
