@@ -290,7 +290,8 @@ class DynamicQPlus(AbstractSolver):
     qp_retry: bool = option(True, "when Clarabel ends a subproblem short of 'Solved', solve it once more with "
                             "its static regularization at 1e-12 (its default, 1e-8, exceeds the smallest "
                             "curvatures of the models it stalls on) and keep the step with the lower model; "
-                            "False: before item 23 of docs/thesis_solvers.md", "[OWN] item 23")
+                            "where it ended on its iteration cap, first once more divided by sqrt(mu) (item "
+                            "26); False: before item 23 of docs/thesis_solvers.md", "[OWN] items 23, 26")
     max_iter: int = option(3000, "maximum number of iterations, each one trial point of a QP step (rejected "
                            "trials included), plus one more when a second-order correction is tried; Ipopt's "
                            "default cap (item 20: 1000 before, which stopped BFGS crawls such as PFIT1LS and "
