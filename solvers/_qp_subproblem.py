@@ -13,10 +13,12 @@ feasible whatever the move limit; when the linearized constraints can be met ins
 and mu exceeds the multipliers, s = t = 0 and the step is the ordinary SQP step (Fletcher's
 Sl1QP).  Solved exactly by Clarabel (interior point; dual variables give the multipliers).
 When Clarabel fails on it (with mu near 1e10 it has reported the bounded QP dual infeasible),
-the same QP with its objective divided by mu is solved once more.  When Clarabel ends short of
-"Solved" (stalled on an ill-conditioned model), the QP is solved once more with its static
-regularization at the curvature floor and the step with the lower model kept
-(docs/thesis_solvers.md, Dynamic-Q+ item 23).
+the same QP with its objective divided by mu is solved once more.  When Clarabel ends on its
+iteration cap (it can cycle when the slack costs dwarf f's gradient), the QP divided by
+sqrt(mu) is solved once more (item 26); when the answer is still short of "Solved" (stalled
+on an ill-conditioned model), once more with its static regularization at the curvature
+floor (item 23).  Each retry keeps the step with the lower model, the QP's objective
+(docs/thesis_solvers.md, Dynamic-Q+ items 23 and 26).
 """
 
 from __future__ import annotations
@@ -205,8 +207,9 @@ def solve_elastic_qp(gf: np.ndarray, sigma: float | np.ndarray, g0: np.ndarray, 
     """Solve the elastic QP above (box ``d_lo <= d <= d_up``; ``sigma`` a positive scalar,
     a positive diagonal of shape (n,) or a positive definite matrix of shape (n, n)).
 
-    ``retry_stalled``: when Clarabel's status is not "Solved", solve once more with the static
-    regularization at `LOW_REGULARIZATION` and keep whichever usable step has the lower l1 model."""
+    ``retry_stalled``: when Clarabel ends on its iteration cap (and mu > 1), solve once more
+    divided by sqrt(mu); when the status is then still not "Solved", once more with the static
+    regularization at `LOW_REGULARIZATION`; each time keep the usable step with the lower l1 model."""
     n, p, q = gf.size, g0.size, h0.size
     nv = n + p + 2 * q
     ne = p + 2 * q  # elastic variables s, t+, t-
