@@ -6,7 +6,10 @@ is unique on both sides.  A regression is a run solved in OLD and unsolved in NE
 run solved in both whose N^fg grew by more than ``nfg_tol`` (default 10%), or, when
 ``rel_error_factor`` is given, whose E^r grew by more than that factor (above 1e-12).  A
 run that timed out in OLD and finished in NEW is "finished in time", neither an
-improvement nor a regression: the time limit depends on the machine.
+improvement nor a regression: the time limit depends on the machine.  So does a run that
+stopped early with an answer because of the clock on either side (a multistart search at
+its deadline, `harness.tables._campaign.clock_stopped`): a difference there is "cut by the
+clock", never a regression; and a baseline leaves such runs out, as it leaves out time-outs.
 
 A baseline is the deterministic part of stored runs (counts, status, f, E^r; never
 times) in ``<dir>/<suite>/counts.csv``: small, diff-able, committed.
@@ -27,6 +30,7 @@ from ._api import NoResults, load_results
 from ._plan import HarnessArgumentError
 from ._store import Store
 from .tables._base import count
+from .tables._campaign import clock_stopped
 
 __all__ = ["compare_dirs", "compare_runs", "format_changes", "save_baseline", "load_counts", "Comparison"]
 
@@ -68,7 +72,8 @@ def save_baseline(suite: str, out: str | os.PathLike[str] = "results",
     a baseline may leave out solvers whose counts vary with the machine, such as SLSQP's).
     """
     runs = load_results(suite, out)
-    runs = runs[runs["status"] != "timeout"]  # a time-out depends on the machine, not the code
+    # a time-out depends on the machine, not the code, and so does how far a run cut by the clock got
+    runs = runs[(runs["status"] != "timeout") & ~clock_stopped(runs)]
     path = pathlib.Path(to) / suite / "counts.csv"
     rows = runs[BASELINE_COLUMNS]
     if solvers is not None:
@@ -99,6 +104,12 @@ def _verdict(r: pd.Series, nfg_tol: float, rel_error_factor: float | None) -> st
         # this is a matter of time, not of counts (a new time-out, by contrast, stays a regression:
         # it is how a hang or a slowdown shows)
         return f"finished in time: timeout -> {r.status_new}" + (" (solved)" if sn else "")
+    if r.clock_old or r.clock_new:
+        # how many local runs a search fitted before its deadline depends on the machine's speed
+        if so == sn and _same(r.nfg_old, r.nfg_new) and r.status_old == r.status_new:
+            return "same"
+        what = f"{'solved' if so else 'unsolved'} -> {'solved' if sn else 'unsolved'}" if so != sn else "changed"
+        return f"cut by the clock: {what}"
     if so and not sn:
         return f"REGRESSION: solved -> unsolved ({r.status_new})"
     if sn and not so:
@@ -120,9 +131,9 @@ def _verdict(r: pd.Series, nfg_tol: float, rel_error_factor: float | None) -> st
 
 def compare_runs(old: pd.DataFrame, new: pd.DataFrame, nfg_tol: float = 0.10,
                  rel_error_factor: float | None = None) -> Comparison:
-    cols = ["nfg", "success", "status", "rel_error", "f"]
-    o = old[KEY + cols].copy()
-    n = new[KEY + cols].copy()
+    cols = ["nfg", "success", "status", "rel_error", "f", "clock"]
+    o = old.assign(clock=clock_stopped(old))[KEY + cols]
+    n = new.assign(clock=clock_stopped(new))[KEY + cols]
     m = o.merge(n, on=KEY, how="outer", suffixes=("_old", "_new"), indicator=True)
     both = m[m["_merge"] == "both"].drop(columns="_merge")
     lo = m[m["_merge"] == "left_only"]

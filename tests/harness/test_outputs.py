@@ -113,6 +113,47 @@ def test_compare_a_finished_time_out_is_a_matter_of_time_not_an_improvement():
     assert v["p2"].startswith("REGRESSION: solved -> unsolved (timeout)")  # a new time-out still counts
 
 
+def test_compare_a_run_cut_by_the_clock_is_never_a_regression():
+    """A multistart search that its deadline ended fits more or fewer local runs on another
+    machine: a difference there is "cut by the clock" on either side, not a regression."""
+    cut, done = json.dumps({"stopped_by": "deadline"}), json.dumps({"stopped_by": "confidence"})
+    old = _runs([{"case_id": "p1", "solver": "m", "nfg": 50, "success": True, "rel_error": 0.0, "f": 0.0,
+                  "extra": done},
+                 {"case_id": "p2", "solver": "m", "nfg": 80, "success": True, "rel_error": 0.0, "f": 0.0,
+                  "extra": cut},
+                 {"case_id": "p3", "solver": "m", "nfg": 90, "success": False, "rel_error": 1.0, "f": 1.0,
+                  "extra": cut},
+                 {"case_id": "p4", "solver": "m", "nfg": 10, "success": True, "rel_error": 0.0, "f": 0.0,
+                  "extra": done}])
+    new = _runs([{"case_id": "p1", "solver": "m", "nfg": 30, "success": False, "status": "max_iter",
+                  "rel_error": 1.0, "f": 1.0, "extra": cut},
+                 {"case_id": "p2", "solver": "m", "nfg": 200, "success": True, "rel_error": 0.0, "f": 0.0,
+                  "extra": cut},
+                 {"case_id": "p3", "solver": "m", "nfg": 90, "success": False, "rel_error": 1.0, "f": 1.0,
+                  "extra": cut},
+                 {"case_id": "p4", "solver": "m", "nfg": 30, "success": True, "rel_error": 0.0, "f": 0.0,
+                  "extra": done}])
+    c = compare_runs(old, new)
+    v = c.changes.set_index("case_id").verdict
+    assert v["p1"] == "cut by the clock: solved -> unsolved"
+    assert v["p2"] == "cut by the clock: changed" and v["p3"] == "same"
+    assert v["p4"].startswith("REGRESSION: N^fg")  # not cut by the clock: judged as before
+    assert list(c.regressions["case_id"]) == ["p4"]
+
+
+def test_a_baseline_leaves_out_runs_cut_by_the_clock(tmp_path, monkeypatch):
+    import harness._compare as cmp
+
+    runs = _runs([{"case_id": "p1", "solver": "m", "nfg": 50, "success": True, "rel_error": 0.0, "f": 0.0,
+                   "extra": json.dumps({"stopped_by": "deadline"})},
+                  {"case_id": "p2", "solver": "m", "nfg": 10, "success": True, "rel_error": 0.0, "f": 0.0,
+                   "extra": "{}"}])
+    runs = runs.assign(**{c: "" for c in cmp.BASELINE_COLUMNS if c not in runs})
+    monkeypatch.setattr(cmp, "load_results", lambda suite, out: runs)
+    save_baseline("s", tmp_path, tmp_path / "base")
+    assert list(load_counts(tmp_path / "base", "s")["case_id"]) == ["p2"]
+
+
 def test_baseline_of_some_solvers_keeps_the_other_rows(stored, tmp_path, capsys):
     """`baseline --solvers`: a deliberate change of one solver refreshes that solver's rows only."""
     tiny, out = stored
