@@ -38,6 +38,9 @@ from .dynamic_q_plus import DynamicQPlus
 __all__ = ["Multistart", "bayes_confidence", "sampling_box"]
 
 DEADLINE_MARGIN = 0.5  # seconds kept for the end of the run (the harness's last evaluations, the row)
+#: a point is refused when this many of the slowest evaluations so far would not fit before the hard
+#: stop: the one asked for, and the harness's report of f and the violation at the returned point
+EVALUATIONS_RESERVED = 3
 
 
 def bayes_confidence(n: int, r: int) -> float:
@@ -78,17 +81,28 @@ class _OutOfTime(BudgetExhausted):
     """
 
 
+@dataclasses.dataclass
+class _HardStop:
+    """The search's hard stop (a `time.time` instant) and the slowest evaluation call seen so far, s."""
+
+    at: float
+    slowest: float = 0.0
+
+
 class _StartedAt:
     """The oracle seen by one local run: the same counting oracle, with ``x0`` the run's start.
 
     Every other attribute is the wrapped oracle's, so counts, history and caching are shared.
-    With ``stop_at`` (a `time.time` instant), asking for a point after it raises `_OutOfTime`:
-    the search then returns its best end so far instead of being killed at the harness's limit
-    with nothing (the prediction in `Multistart.minimize` is a guess; this is the guarantee).
+    With ``stop`` (a `_HardStop` shared by the search's runs), asking for a point that would not
+    be done before the hard stop raises `_OutOfTime` (predicted: `EVALUATIONS_RESERVED` times the
+    slowest evaluation so far, so that a problem whose evaluations take 0.4 s still leaves time
+    for the harness's report at the end): the search then returns its best end so far instead of
+    being killed at the harness's limit with nothing (the prediction in `Multistart.minimize` is
+    a guess; this is the guarantee).
     """
 
-    def __init__(self, oracle: Oracle, x0: np.ndarray, stop_at: float | None = None) -> None:
-        self._oracle, self._x0, self._stop_at = oracle, x0, stop_at
+    def __init__(self, oracle: Oracle, x0: np.ndarray, stop: _HardStop | None = None) -> None:
+        self._oracle, self._x0, self._stop = oracle, x0, stop
 
     @property
     def x0(self) -> np.ndarray:
@@ -96,14 +110,17 @@ class _StartedAt:
 
     def __getattr__(self, name: str) -> Any:
         attr = getattr(self._oracle, name)
-        stop_at = self._stop_at
-        if stop_at is None or name not in _EVALUATIONS:
+        stop = self._stop
+        if stop is None or name not in _EVALUATIONS:
             return attr
 
         def checked(*args: Any, **kwargs: Any) -> Any:
-            if time.time() > stop_at:
+            now = time.time()
+            if now + EVALUATIONS_RESERVED * stop.slowest > stop.at:
                 raise _OutOfTime("the run's deadline is near: local run stopped")
-            return attr(*args, **kwargs)
+            out = attr(*args, **kwargs)
+            stop.slowest = max(stop.slowest, time.time() - now)
+            return out
 
         return checked
 
@@ -173,10 +190,10 @@ class Multistart(AbstractSolver):
         return self.local.can_solve(problem)
 
     # ------------------------------------------------------------------ helpers
-    def _run(self, oracle: Oracle, start: np.ndarray, stop_at: float | None = None) -> _End:
+    def _run(self, oracle: Oracle, start: np.ndarray, stop: _HardStop | None = None) -> _End:
         """One local run from ``start``, and f and the violation at its end (through the oracle)."""
         try:
-            out = self.local.minimize(_StartedAt(oracle, start, stop_at))  # type: ignore[arg-type]  # a view
+            out = self.local.minimize(_StartedAt(oracle, start, stop))  # type: ignore[arg-type]  # a view
             x = np.clip(np.asarray(out.x, dtype=float).reshape(-1), oracle.lower, oracle.upper)
             status, message = Status(out.status), out.message
         except BudgetExhausted:
@@ -208,14 +225,14 @@ class Multistart(AbstractSolver):
         lo, hi = sampling_box(np.clip(x0, oracle.lower, oracle.upper), oracle.lower, oracle.upper, self.spread)
         rng = np.random.default_rng(self.seed)
         deadline, longest = run_deadline(), 0.0
-        stop_at = None if deadline is None else deadline - DEADLINE_MARGIN
+        hard_stop = None if deadline is None else _HardStop(deadline - DEADLINE_MARGIN)
         ends: list[_End] = []
         q, stop = 0.0, "max_starts"
         for k in range(self.max_starts):
             start = x0 if k == 0 else rng.uniform(lo, hi)
             t_run = time.perf_counter()
             try:
-                ends.append(self._run(oracle, start, stop_at))
+                ends.append(self._run(oracle, start, hard_stop))
             except _OutOfTime:  # the unfinished local run is dropped; the ends so far stand
                 stop = "deadline"
                 break

@@ -180,16 +180,33 @@ def test_a_local_run_that_would_overrun_the_deadline_is_stopped_and_the_ends_kep
 
 def test_the_local_runs_view_stops_only_point_requests(monkeypatch):
     from problems import BudgetExhausted, Oracle
-    from solvers.multistart import _StartedAt
+    from solvers.multistart import _HardStop, _StartedAt
 
     oracle = Oracle(double_well())
-    late = _StartedAt(oracle, np.array([2.0]), stop_at=time.time() - 1.0)
+    late = _StartedAt(oracle, np.array([2.0]), _HardStop(time.time() - 1.0))
     assert late.n == 1 and late.x0[0] == 2.0 and late.nfg == 0  # attributes still answer
     for call in (lambda: late.f([1.0]), lambda: late.evaluate([1.0]), lambda: late.at([1.0]).f()):
         with pytest.raises(BudgetExhausted, match="deadline"):
             call()
     assert oracle.nfg == 0
-    assert _StartedAt(oracle, np.array([2.0]), stop_at=time.time() + 60).f([1.0]) == oracle.f([1.0])
+    assert _StartedAt(oracle, np.array([2.0]), _HardStop(time.time() + 60)).f([1.0]) == oracle.f([1.0])
+
+
+def test_a_point_is_refused_when_slow_evaluations_would_not_fit():
+    """With evaluations of 0.4 s, 1 s before the hard stop is too late for another one plus the
+    harness's report at the end (3 x 0.4 s), although the instant itself is not yet reached."""
+    from problems import BudgetExhausted, Oracle
+    from solvers.multistart import EVALUATIONS_RESERVED, _HardStop, _StartedAt
+
+    oracle = Oracle(double_well())
+    stop = _HardStop(time.time() + 1.0, slowest=0.4)
+    assert EVALUATIONS_RESERVED * 0.4 > 1.0
+    with pytest.raises(BudgetExhausted, match="deadline"):
+        _StartedAt(oracle, np.array([2.0]), stop).evaluate([1.0])
+    stop.slowest = 0.2  # 3 x 0.2 s fits in the second left
+    view = _StartedAt(oracle, np.array([2.0]), stop)
+    assert view.evaluate([1.0])["f"] == oracle.f([1.0])
+    assert 0.0 < stop.slowest == 0.2  # the call was fast: the slowest seen stays
 
 
 def test_run_deadline_set_and_cleared(monkeypatch):
