@@ -287,6 +287,10 @@ class DynamicQPlus(AbstractSolver):
                                "last one, take the model's short step once at that point (to gain its secant "
                                "pair; a rejected probe leaves the move limit) instead of resetting again; False: "
                                "before item 25 of docs/thesis_solvers.md", "[OWN] item 25")
+    stuck_reset: bool = option(True, "at an infeasible point where the model finds no descent of the merit even "
+                               "with the weight at its cap, reset the model to the unit model once (after any "
+                               "update since the last reset) before failing; False: before item 27 of "
+                               "docs/thesis_solvers.md", "[OWN] item 27")
     qp_retry: bool = option(True, "when Clarabel ends a subproblem short of 'Solved', solve it once more with "
                             "its static regularization at 1e-12 (its default, 1e-8, exceeds the smallest "
                             "curvatures of the models it stalls on) and keep the step with the lower model; "
@@ -726,6 +730,14 @@ class DynamicQPlus(AbstractSolver):
                                         "tolerance", nit=it, extra=self._extra(log, n_rej, chi, n_reset))
             if (dn == 0.0 or pred <= 0.0) and viol > self.eps_c and mu < MU_MAX:
                 mu *= 10.0  # [OWN] stationary for the merit but infeasible: weigh feasibility more
+                continue
+            if self.stuck_reset and (dn == 0.0 or pred <= 0.0) and viol > self.eps_c and n_upd > 0:
+                # [OWN] item 27: infeasible, with the weight at its cap and no descent for the model:
+                # the quasi-Newton curvatures can be what stops it (CRESC4: up to 1e8, steps of 1e-8
+                # that gained 1e6 times their prediction, violation stuck at 1.5); once more from
+                # the unit model, as item 13 does at a stop far from stationary
+                sigma = self._unit_model(ev, x, sf, oracle.n)
+                n_upd, n_reset, x_reset = 0, n_reset + 1, x
                 continue
             if dn == 0.0 or pred <= 0.0:
                 return SolverOutput(x, Status.FAILED if viol > self.eps_c else Status.CONVERGED,

@@ -495,6 +495,18 @@ def test_probe_of_a_short_model_step_crosses_a_stiff_valley():
     assert cycling.f > 0.1 and not any(e["probe"] for e in cycling.extra["iterations"])
 
 
+def test_a_stuck_infeasible_run_is_reset_to_the_unit_model():
+    """Item 27 on CRESC4 (S2MPJ, n = 6): the BFGS curvatures grew to 1e8 while the violation
+    stayed at 1.5, every QP step was 1e-8 long, the weight rose to its cap and the run failed
+    infeasible after 15 N^fg.  Reset to the unit model there, it reaches the optimum 0.8719
+    (the value SLSQP, NLopt's SLSQP and Ipopt reach)."""
+    p = _s2mpj("CRESC4")
+    r = solve(p, "dynamic-q-plus")
+    assert r.status == "converged" and r.max_violation <= 1e-6 and abs(r.f - 0.871898) < 1e-5
+    stuck = solve(p, "dynamic-q-plus", stuck_reset=False)
+    assert stuck.status == "failed" and stuck.max_violation > 1.0
+
+
 def test_scaled_variables_follow_the_chain_rule():
     """In y = x / s the oracle's gradients and Jacobians are s times the x ones (checked against
     central differences in y), and its bounds and start are x's divided by s."""
