@@ -260,11 +260,13 @@ def test_constraint_curvature_after_a_trial_that_raised_the_violation():
     optimum is 9).  With the next QP corrected by the constraints' curvatures (3.6) after such a
     trial, it converges feasibly to f = 9 within 1e-5.  Both as measured before item 23
     (``qp_retry=False``): with the retry of stalled subproblems TRO3X3 converges without item 19 too
-    (f = 9.00000004), so part of what item 19 cured there was the stalled subproblem."""
+    (f = 9.00000004), so part of what item 19 cured there was the stalled subproblem.  And before
+    item 27 (``stuck_reset=False``): without item 19, its reset to the unit model at the failing stop
+    ends the run feasible too, at f = 9.0365 instead of the optimum 9."""
     p = _s2mpj("TRO3X3")
     r = solve(p, "dynamic-q-plus", qp_retry=False)
     assert r.status == "converged" and r.max_violation <= 1e-6 and r.f == pytest.approx(9.0, rel=1e-5)
-    off = solve(p, "dynamic-q-plus", rise_curvature=False, qp_retry=False)
+    off = solve(p, "dynamic-q-plus", rise_curvature=False, qp_retry=False, stuck_reset=False)
     assert off.status == "failed" and off.max_violation > 1e-6
     assert solve(p, "dynamic-q-plus").f == pytest.approx(9.0, rel=1e-6)  # the default, with the retry
 
