@@ -656,10 +656,10 @@ class DynamicQPlus(AbstractSolver):
                 res, mu = self._steer(res, mu, ev, sigma, d_lo, d_up)
             # [OWN] item 18: where the step removes less than a tenth of the linearized infeasibility
             # (the steering rule's test), the linearization cannot restore feasibility (FLETCHER: a
-            # constraint whose gradient vanishes at x0; CRESC4: stuck at violation 1.5 while mu ran
-            # to its cap); with the curvatures (3.6) it can.  Not wherever the slacks are in use:
-            # that also bent steps the move limit merely cut (2-RPR E, LUKVLE11, LUKVLE17 ended
-            # higher).  The curvatures are computed only here, where used
+            # constraint whose gradient vanishes at x0); with the curvatures (3.6) it can (CRESC4,
+            # stuck at violation 1.5 with the weight at its cap, needs item 27 too).  Not wherever the
+            # slacks are in use: that also bent steps the move limit merely cut (2-RPR E, LUKVLE11,
+            # LUKVLE17 ended higher).  The curvatures are computed only here, where used
             stuck = self.stuck_curvature and res.elastic > self.eps_c and not _removes_a_tenth(res.d, ev)
             # [OWN] item 19: likewise after a trial whose violation rose against the linearization's
             # prediction (TENBARS3: a plain step rejected and a second-order correction accepted, in
@@ -728,18 +728,18 @@ class DynamicQPlus(AbstractSolver):
                 else:
                     return SolverOutput(x, Status.CONVERGED, "feasible and step / predicted reduction below "
                                         "tolerance", nit=it, extra=self._extra(log, n_rej, chi, n_reset))
-            if (dn == 0.0 or pred <= 0.0) and viol > self.eps_c and mu < MU_MAX:
-                mu *= 10.0  # [OWN] stationary for the merit but infeasible: weigh feasibility more
-                continue
-            if self.stuck_reset and (dn == 0.0 or pred <= 0.0) and viol > self.eps_c and n_upd > 0:
-                # [OWN] item 27: infeasible, with the weight at its cap and no descent for the model:
-                # the quasi-Newton curvatures can be what stops it (CRESC4: up to 1e8, steps of 1e-8
-                # that gained 1e6 times their prediction, violation stuck at 1.5); once more from
-                # the unit model, as item 13 does at a stop far from stationary
-                sigma = self._unit_model(ev, x, sf, oracle.n)
-                n_upd, n_reset, x_reset = 0, n_reset + 1, x
-                continue
-            if dn == 0.0 or pred <= 0.0:
+            if dn == 0.0 or pred <= 0.0:  # no descent for the model of the merit
+                if viol > self.eps_c and mu < MU_MAX:
+                    mu *= 10.0  # [OWN] stationary for the merit but infeasible: weigh feasibility more
+                    continue
+                if self.stuck_reset and viol > self.eps_c and n_upd > 0:
+                    # [OWN] item 27: infeasible with the weight at its cap: the quasi-Newton curvatures
+                    # can be what stops it (CRESC4: up to 1e8, steps of 1e-8 that gained 1e6 times their
+                    # prediction, violation stuck at 1.5); once more from the unit model, as item 13
+                    # does at a stop far from stationary
+                    sigma = self._unit_model(ev, x, sf, oracle.n)
+                    n_upd, n_reset, x_reset = 0, n_reset + 1, x
+                    continue
                 return SolverOutput(x, Status.FAILED if viol > self.eps_c else Status.CONVERGED,
                                     "no descent step for the l1 merit (stationary for the model)", nit=it,
                                     extra=self._extra(log, n_rej, n_reset=n_reset))
