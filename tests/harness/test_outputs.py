@@ -113,26 +113,19 @@ def test_compare_a_finished_time_out_is_a_matter_of_time_not_an_improvement():
     assert v["p2"].startswith("REGRESSION: solved -> unsolved (timeout)")  # a new time-out still counts
 
 
+def _search(case: str, nfg: int, solved: bool, stopped_by: str, **more):
+    """A multistart row: solved at f = 0, or not at f = 1; ``stopped_by`` as its ``extra`` says."""
+    return {"case_id": case, "solver": "m", "nfg": nfg, "success": solved, "rel_error": 0.0 if solved else 1.0,
+            "f": 0.0 if solved else 1.0, "extra": json.dumps({"stopped_by": stopped_by}), **more}
+
+
 def test_compare_a_run_cut_by_the_clock_is_never_a_regression():
     """A multistart search that its deadline ended fits more or fewer local runs on another
     machine: a difference there is "cut by the clock" on either side, not a regression."""
-    cut, done = json.dumps({"stopped_by": "deadline"}), json.dumps({"stopped_by": "confidence"})
-    old = _runs([{"case_id": "p1", "solver": "m", "nfg": 50, "success": True, "rel_error": 0.0, "f": 0.0,
-                  "extra": done},
-                 {"case_id": "p2", "solver": "m", "nfg": 80, "success": True, "rel_error": 0.0, "f": 0.0,
-                  "extra": cut},
-                 {"case_id": "p3", "solver": "m", "nfg": 90, "success": False, "rel_error": 1.0, "f": 1.0,
-                  "extra": cut},
-                 {"case_id": "p4", "solver": "m", "nfg": 10, "success": True, "rel_error": 0.0, "f": 0.0,
-                  "extra": done}])
-    new = _runs([{"case_id": "p1", "solver": "m", "nfg": 30, "success": False, "status": "max_iter",
-                  "rel_error": 1.0, "f": 1.0, "extra": cut},
-                 {"case_id": "p2", "solver": "m", "nfg": 200, "success": True, "rel_error": 0.0, "f": 0.0,
-                  "extra": cut},
-                 {"case_id": "p3", "solver": "m", "nfg": 90, "success": False, "rel_error": 1.0, "f": 1.0,
-                  "extra": cut},
-                 {"case_id": "p4", "solver": "m", "nfg": 30, "success": True, "rel_error": 0.0, "f": 0.0,
-                  "extra": done}])
+    old = _runs([_search("p1", 50, True, "confidence"), _search("p2", 80, True, "deadline"),
+                 _search("p3", 90, False, "deadline"), _search("p4", 10, True, "confidence")])
+    new = _runs([_search("p1", 30, False, "deadline", status="max_iter"), _search("p2", 200, True, "deadline"),
+                 _search("p3", 90, False, "deadline"), _search("p4", 30, True, "confidence")])
     c = compare_runs(old, new)
     v = c.changes.set_index("case_id").verdict
     assert v["p1"] == "cut by the clock: solved -> unsolved"
@@ -144,10 +137,7 @@ def test_compare_a_run_cut_by_the_clock_is_never_a_regression():
 def test_a_baseline_leaves_out_runs_cut_by_the_clock(tmp_path, monkeypatch):
     import harness._compare as cmp
 
-    runs = _runs([{"case_id": "p1", "solver": "m", "nfg": 50, "success": True, "rel_error": 0.0, "f": 0.0,
-                   "extra": json.dumps({"stopped_by": "deadline"})},
-                  {"case_id": "p2", "solver": "m", "nfg": 10, "success": True, "rel_error": 0.0, "f": 0.0,
-                   "extra": "{}"}])
+    runs = _runs([_search("p1", 50, True, "deadline"), _search("p2", 10, True, "confidence")])
     runs = runs.assign(**{c: "" for c in cmp.BASELINE_COLUMNS if c not in runs})
     monkeypatch.setattr(cmp, "load_results", lambda suite, out: runs)
     save_baseline("s", tmp_path, tmp_path / "base")
