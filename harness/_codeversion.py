@@ -42,6 +42,24 @@ def _module_of(path: pathlib.Path) -> str:
     return ".".join(parts)
 
 
+def _is_type_checking(test: ast.expr) -> bool:
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
+
+
+def _executed_nodes(tree: ast.AST):
+    """Every node of ``tree`` except the bodies of ``if TYPE_CHECKING:`` (imports for type
+    checkers only: the module never runs them, so they cannot change a run's numbers)."""
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        yield node
+        if isinstance(node, ast.If) and _is_type_checking(node.test):
+            stack += node.orelse
+            continue
+        stack += ast.iter_child_nodes(node)
+
+
 @functools.cache
 def _imports(path: pathlib.Path, mtime: float) -> tuple[str, ...]:
     """Project modules imported by ``path`` (absolute names)."""
@@ -52,7 +70,7 @@ def _imports(path: pathlib.Path, mtime: float) -> tuple[str, ...]:
     here = _module_of(path)
     pkg = here if path.name == "__init__.py" else here.rpartition(".")[0]
     out: list[str] = []
-    for node in ast.walk(tree):
+    for node in _executed_nodes(tree):
         if isinstance(node, ast.Import):
             out += [a.name for a in node.names]
         elif isinstance(node, ast.ImportFrom):

@@ -64,23 +64,31 @@ def null_space_form(S: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarra
 
 
 def _solve_small(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Solve stacks A (k, r, r) x = b (k, P, r) (Cramer for r <= 2); (x (k, P, r), det (k,))."""
+    """Solve stacks A (k, r, r) x = b (k, P, r) (Cramer for r <= 2); (x (k, P, r), det (k,)).
+
+    Where |det| <= `SINGULAR_TOL` the system is solved with det replaced by 1 (r <= 2) or A by
+    the identity: finite values the callers mask out by det, never inf or NaN.
+    """
     r = A.shape[-1]
     if r == 1:
         det = A[:, 0, 0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return b / det[:, None, None], det
+        return b / _nonsingular(det)[:, None, None], det
     if r == 2:
         a, bb, c, d = A[:, 0, 0], A[:, 0, 1], A[:, 1, 0], A[:, 1, 1]
         det = a * d - bb * c
-        with np.errstate(divide="ignore", invalid="ignore"):
-            x0 = (d[:, None] * b[..., 0] - bb[:, None] * b[..., 1]) / det[:, None]
-            x1 = (a[:, None] * b[..., 1] - c[:, None] * b[..., 0]) / det[:, None]
+        div = _nonsingular(det)[:, None]
+        x0 = (d[:, None] * b[..., 0] - bb[:, None] * b[..., 1]) / div
+        x1 = (a[:, None] * b[..., 1] - c[:, None] * b[..., 0]) / div
         return np.stack([x0, x1], axis=-1), det
     det = np.linalg.det(A)
     safe = np.where((np.abs(det) > SINGULAR_TOL)[:, None, None], A, np.eye(r))
     x = np.linalg.solve(safe[:, None], b[..., None])[..., 0]
     return x, det
+
+
+def _nonsingular(det: np.ndarray) -> np.ndarray:
+    """det where |det| > `SINGULAR_TOL`, else 1."""
+    return np.where(np.abs(det) > SINGULAR_TOL, det, 1.0)
 
 
 def basic_solutions(S: np.ndarray, w: np.ndarray, t_min: float, t_max: float, tol: float = 1e-10):

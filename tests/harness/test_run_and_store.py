@@ -133,6 +133,8 @@ def test_code_version_follows_the_import_closure(tmp_path):
     sqsd = names(("solvers.sqsd", "problems._suite"))
     assert "solvers/sqsd.py" in sqsd and "problems/_oracle.py" in sqsd
     assert not any(n.startswith("manipulators") or "lfopc" in n for n in sqsd)
+    planar = names(("manipulators.synthesis.rpr2_suite",))  # the package's names are lazy
+    assert "manipulators/rpr2.py" in planar and not any("spatial" in n or "cable" in n for n in planar)
     f = tmp_path / "suite.py"
     f.write_text("A = 1\n")
     v1 = code_version(("solvers.sqsd",), (str(f),))
@@ -254,3 +256,27 @@ def test_suite_file_without_solvers_runs_every_solver_that_handles_it(mine_file,
     runs = Store(tmp_path, "mine").load()
     assert {"sqsd", "dynamic-q", "scipy-bfgs", "ipopt"} <= set(runs["solver"])
     assert (runs["status"] != "not_applicable").all()
+
+
+@pytest.mark.parametrize("suite", ["rpr2", "rpr2-exact", "rpr3", "tdpm", "spatial"])
+def test_a_suite_loads_no_project_module_outside_its_code_version(suite):
+    """The code version hashes the static import closure; a module loaded some other way (a lazy
+    package attribute, importlib by name) would be edited without invalidating stored runs.
+    So: build the suite's cases and evaluate its first problem in a fresh interpreter, and every
+    project module loaded must be in the closure of the suite module and the solver's."""
+    import subprocess
+    import sys
+
+    from harness._codeversion import PACKAGES, ROOT, module_closure
+    from problems._catalog import BUILTIN
+
+    module = BUILTIN[suite].split(":")[0]
+    code = (f"import sys, importlib; m = importlib.import_module({module!r}); c = m.SUITE.cases()[0]; "
+            "c.problem.objective(c.problem.x0); import solvers.dynamic_q_plus; "
+            f"print('\\n'.join(k for k in sys.modules if k.split('.')[0] in {PACKAGES!r}))")
+    loaded = subprocess.run([sys.executable, "-c", code], cwd=ROOT, check=True, capture_output=True,
+                            text=True).stdout.split()
+    files = {p.relative_to(ROOT).with_suffix("").as_posix().removesuffix("/__init__")
+             for p in module_closure((module, "solvers.dynamic_q_plus"))}
+    outside = sorted(m for m in loaded if m.replace(".", "/") not in files)
+    assert not outside, f"{suite}: loaded but not in the code version: {outside}"

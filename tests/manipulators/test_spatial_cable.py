@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import warnings
 
 import numpy as np
 import pytest
@@ -180,3 +181,22 @@ def test_min_norm_tensions():
     assert feas[0]
     np.testing.assert_allclose(T[0], -np.linalg.pinv(S) @ w, atol=1e-12)
     np.testing.assert_allclose(T[0], 30.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("r", [1, 2, 3])
+def test_singular_bound_subsets_give_finite_values_without_warnings(r):
+    """A singular r x r bound subset (a degenerate pose) is masked by its det: the solve must give
+    finite values and no RuntimeWarning, and the nonsingular systems their exact solution."""
+    from manipulators.spatial._distribution6 import SINGULAR_TOL, _solve_small
+
+    rng = np.random.default_rng(r)
+    A = rng.normal(size=(3, r, r))
+    A[1] = 0.0  # singular
+    b = rng.normal(size=(3, 4, r))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        x, det = _solve_small(A, b)
+    assert np.all(np.isfinite(x))
+    assert abs(det[1]) <= SINGULAR_TOL < np.abs(det[[0, 2]]).min()
+    for i in (0, 2):
+        np.testing.assert_allclose(np.einsum("ij,pj->pi", A[i], x[i]), b[i], atol=1e-10)
