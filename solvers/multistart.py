@@ -37,11 +37,7 @@ from .dynamic_q_plus import DynamicQPlus
 
 __all__ = ["Multistart", "bayes_confidence", "sampling_box"]
 
-#: time kept for the end of the run (the harness's last evaluations, the row): DEADLINE_MARGIN s plus
-#: DEADLINE_SHARE of the time the run had, since that work grows with the history's length (a
-#: 10 s search over thousands of points needed 0.79 s after its hard stop on a loaded machine)
-DEADLINE_MARGIN = 0.5
-DEADLINE_SHARE = 0.05
+DEADLINE_MARGIN = 0.5  # seconds kept for the end of the run (the harness's last evaluations, the row)
 #: a point is refused when this many of the slowest evaluations so far would not fit before the hard
 #: stop: the one asked for, and the harness's report of f and the violation at the returned point
 EVALUATIONS_RESERVED = 3
@@ -229,8 +225,7 @@ class Multistart(AbstractSolver):
         lo, hi = sampling_box(np.clip(x0, oracle.lower, oracle.upper), oracle.lower, oracle.upper, self.spread)
         rng = np.random.default_rng(self.seed)
         deadline, longest = run_deadline(), 0.0
-        margin = 0.0 if deadline is None else DEADLINE_MARGIN + DEADLINE_SHARE * max(0.0, deadline - time.time())
-        hard_stop = None if deadline is None else _HardStop(deadline - margin)
+        hard_stop = None if deadline is None else _HardStop(deadline - DEADLINE_MARGIN)
         ends: list[_End] = []
         q, stop = 0.0, "max_starts"
         for k in range(self.max_starts):
@@ -258,7 +253,7 @@ class Multistart(AbstractSolver):
                 break
             # under the harness: a run killed at its time limit keeps nothing, so stop while the
             # next local run (predicted: twice the longest so far) still fits
-            if deadline is not None and time.time() + 2.0 * longest + margin > deadline:
+            if deadline is not None and time.time() + 2.0 * longest + DEADLINE_MARGIN > deadline:
                 stop = "deadline"
                 break
         return self._output(oracle, ends, q, stop)
