@@ -10,12 +10,14 @@ from __future__ import annotations
 import datetime as _dt
 import importlib.metadata
 import json
+import math
 import os
 import pathlib
 import platform
 import socket
 import subprocess
 import sys
+from collections.abc import Callable
 from typing import Any
 
 from ._blas import KERNEL_ENV
@@ -105,3 +107,38 @@ def record_session(root: pathlib.Path, session: dict[str, Any]) -> pathlib.Path:
     data["latest"] = session
     _atomic_write_bytes(path, json.dumps(data, indent=1, default=str).encode())
     return path
+
+
+def stored_cpu(root: pathlib.Path) -> str | None:
+    """CPU model of the last session that stored runs under ``root`` (None if unknown)."""
+    try:
+        sessions = json.loads((root / "manifest.json").read_text()).get("sessions", [])
+    except (OSError, ValueError, AttributeError):
+        return None
+    for session in reversed(sessions):
+        if isinstance(session, dict) and session.get("executed"):
+            return (session.get("machine") or {}).get("cpu_model")
+    return None
+
+
+def machine_note(root: pathlib.Path, timeout: float, clock_decided: Callable[[], int]) -> str:
+    """A note when runs are about to join stored ones made on another CPU, of which
+    ``clock_decided()`` (called only then) ended by the clock ("" otherwise).
+
+    Counts and f reproduce across machines (the kernel pins of `harness._blas`), but what the
+    time limit decides does not: a time-out, or a multistart search cut by the clock, depends
+    on the machine's speed. On 2026-11-29 a CUTEst multistart re-run on a machine 1.7 times
+    slower cut 145 searches instead of 107 and solved 10 fewer (docs/harness.md).
+    """
+    here, there = _cpu_model(), stored_cpu(root)
+    if not here or not there or here == there:
+        return ""
+    n = clock_decided()
+    if not n:  # no stored outcome was the clock's: the rows compare across machines
+        return ""
+    limit = f"the {timeout:g} s limit" if math.isfinite(timeout) and timeout > 0 else "a time limit"
+    return (f"note: the stored runs of {root.name} were made on {there!r}, this machine is {here!r}: "
+            f"counts and f reproduce across machines, but outcomes decided by {limit} ({n} stored "
+            f"time-outs and searches cut by the clock) depend on its speed; compare those only within "
+            f"one machine's campaign (docs/harness.md, 'Reproducibility across machines')")
+

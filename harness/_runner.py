@@ -57,6 +57,14 @@ class RunSummary:
                 f"{self.elapsed:.1f} s -> {self.store}")
 
 
+def _clock_decided(store: Store) -> int:
+    """Stored runs whose outcome the wall clock decided: time-outs and searches it cut short."""
+    from .tables._campaign import clock_stopped
+
+    runs = store.load()
+    return int(((runs["status"] == "timeout") | clock_stopped(runs)).sum()) if len(runs) else 0
+
+
 def _cores() -> int:
     """Cores this process may use (CPU affinity, e.g. under a batch system), else all."""
     try:
@@ -285,6 +293,9 @@ def run_suite(
     summary = RunSummary(ref.name, len(specs), len(specs) - len(todo), 0, 0, 0, store.parquet, 0.0,
                          retried=sum(sp.run_key in again for sp in todo))
     if todo:
+        note = _manifest.machine_note(store.root, timeout, lambda: _clock_decided(store))
+        if note:  # before the work, and whether or not progress is shown: it qualifies the results
+            print(note, file=sys.stderr, flush=True)
         bar = Progress(ref.name, len(todo), progress)
         last = time.perf_counter()
         info: dict[str, Any] = {}

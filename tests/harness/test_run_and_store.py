@@ -280,3 +280,27 @@ def test_a_suite_loads_no_project_module_outside_its_code_version(suite):
              for p in module_closure((module, "solvers.dynamic_q_plus"))}
     outside = sorted(m for m in loaded if m.replace(".", "/") not in files)
     assert not outside, f"{suite}: loaded but not in the code version: {outside}"
+
+
+def test_a_run_joining_rows_of_another_cpu_says_so(tiny_file, tmp_path, capsys, monkeypatch):
+    """Outcomes decided by the clock depend on the machine: adding runs to rows another CPU made,
+    some of them time-outs, prints a note naming both CPUs; on the same CPU, with nothing to run,
+    or with no stored outcome of the clock's, it stays silent."""
+    from harness import _manifest, _runner
+
+    monkeypatch.setattr(_manifest, "_cpu_model", lambda: "CPU A")
+    run(tiny_file, tmp_path, problems=["q2"])
+    assert "note:" not in capsys.readouterr().err  # a new store
+    run(tiny_file, tmp_path, problems=["q20"])
+    assert "note:" not in capsys.readouterr().err  # the same CPU
+    assert _manifest.stored_cpu(tmp_path / "tiny") == "CPU A"
+    monkeypatch.setattr(_manifest, "_cpu_model", lambda: "CPU B")
+    run(tiny_file, tmp_path, problems=["q2"], fresh=True)
+    assert "note:" not in capsys.readouterr().err  # no stored time-out: the tiny suite's runs all finish
+    monkeypatch.setattr(_runner, "_clock_decided", lambda store: 2)
+    monkeypatch.setattr(_manifest, "_cpu_model", lambda: "CPU A")  # B made the last rows
+    run(tiny_file, tmp_path, problems=["q2"])
+    assert "note:" not in capsys.readouterr().err  # nothing to run
+    run(tiny_file, tmp_path, problems=["q2"], fresh=True, timeout=10)
+    err = capsys.readouterr().err
+    assert "made on 'CPU B', this machine is 'CPU A'" in err and "10 s limit (2 stored" in err
