@@ -141,4 +141,3 @@ def machine_note(root: pathlib.Path, timeout: float, clock_decided: Callable[[],
             f"counts and f reproduce across machines, but outcomes decided by {limit} ({n} stored "
             f"time-outs and searches cut by the clock) depend on its speed; compare those only within "
             f"one machine's campaign (docs/harness.md, 'Reproducibility across machines')")
-

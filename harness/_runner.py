@@ -61,6 +61,8 @@ def _clock_decided(store: Store) -> int:
     """Stored runs whose outcome the wall clock decided: time-outs and searches it cut short."""
     from .tables._campaign import clock_stopped
 
+    if not store.exists():
+        return 0
     runs = store.load()
     return int(((runs["status"] == "timeout") | clock_stopped(runs)).sum()) if len(runs) else 0
 
