@@ -205,7 +205,12 @@ def plan_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] |
         import_modules(tuple(modules))
     ref, specs = _plan(suite, suite_file, solvers, problems, select, timeout, modules)
     store = Store(out, ref.name)
-    return plan_table(specs, _todo(specs, store, timeout, fresh, retry_failed)[0], store)
+    todo = _todo(specs, store, timeout, fresh, retry_failed)[0]
+    table = plan_table(specs, todo, store)
+    # the note `run_suite` would print (`_manifest.machine_note`): stored wall times, which the
+    # estimate uses, are another machine's too
+    table.attrs["note"] = _manifest.machine_note(store.root, timeout, lambda: _clock_decided(store)) if todo else ""
+    return table
 
 
 def prune_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] | None = None,

@@ -164,6 +164,8 @@ def _cmd_run(a: argparse.Namespace) -> int:
         print(plan.to_string(index=False))
         print("\nestimated run time: stored wall times of the same runs where there are any, else the solver's "
               "mean; divide the sum by the workers (--jobs) for the wall time. Nothing was run.")
+        if plan.attrs.get("note"):
+            print(plan.attrs["note"])
         return 0
     summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
                         select=a.select,

@@ -304,3 +304,11 @@ def test_a_run_joining_rows_of_another_cpu_says_so(tiny_file, tmp_path, capsys, 
     run(tiny_file, tmp_path, problems=["q2"], fresh=True, timeout=10)
     err = capsys.readouterr().err
     assert "made on 'CPU B', this machine is 'CPU A'" in err and "10 s limit (2 stored" in err
+    # --dry-run says it too, after the plan (whose estimates are the stored wall times)
+    assert main(["run", "--suite-file", tiny_file, "--out", str(tmp_path), "--problems", "q2", "--fresh",
+                 "--dry-run"]) == 0
+    assert "note:" not in capsys.readouterr().out  # the same CPU as the last rows
+    monkeypatch.setattr(_manifest, "_cpu_model", lambda: "CPU C")
+    assert main(["run", "--suite-file", tiny_file, "--out", str(tmp_path), "--problems", "q2", "--fresh",
+                 "--dry-run"]) == 0
+    assert "made on 'CPU A', this machine is 'CPU C'" in capsys.readouterr().out
