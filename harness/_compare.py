@@ -30,7 +30,7 @@ from ._api import NoResults, load_results
 from ._plan import HarnessArgumentError
 from ._store import Store
 from .tables._base import count
-from .tables._campaign import clock_stopped
+from .tables._campaign import clock_decided, clock_stopped
 
 __all__ = ["compare_dirs", "compare_runs", "format_changes", "save_baseline", "load_counts", "Comparison"]
 
@@ -73,7 +73,7 @@ def save_baseline(suite: str, out: str | os.PathLike[str] = "results",
     """
     runs = load_results(suite, out)
     # a time-out depends on the machine, not the code, and so does how far a run cut by the clock got
-    runs = runs[(runs["status"] != "timeout") & ~clock_stopped(runs)]
+    runs = runs[~clock_decided(runs)]
     path = pathlib.Path(to) / suite / "counts.csv"
     rows = runs[BASELINE_COLUMNS]
     if solvers is not None:

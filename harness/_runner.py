@@ -58,13 +58,18 @@ class RunSummary:
 
 
 def _clock_decided(store: Store) -> int:
-    """Stored runs whose outcome the wall clock decided: time-outs and searches it cut short."""
-    from .tables._campaign import clock_stopped
+    """Stored runs whose outcome the wall clock decided (`tables._campaign.clock_decided`)."""
+    from .tables._campaign import clock_decided
 
     if not store.exists():
         return 0
     runs = store.load()
-    return int(((runs["status"] == "timeout") | clock_stopped(runs)).sum()) if len(runs) else 0
+    return int(clock_decided(runs).sum()) if len(runs) else 0
+
+
+def _machine_note(store: Store, timeout: float) -> str:
+    """`_manifest.machine_note` for runs about to be added to ``store``."""
+    return _manifest.machine_note(store.root, timeout, lambda: _clock_decided(store))
 
 
 def _cores() -> int:
@@ -209,7 +214,7 @@ def plan_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] |
     table = plan_table(specs, todo, store)
     # the note `run_suite` would print (`_manifest.machine_note`): stored wall times, which the
     # estimate uses, are another machine's too
-    table.attrs["note"] = _manifest.machine_note(store.root, timeout, lambda: _clock_decided(store)) if todo else ""
+    table.attrs["note"] = _machine_note(store, timeout) if todo else ""
     return table
 
 
@@ -300,7 +305,7 @@ def run_suite(
     summary = RunSummary(ref.name, len(specs), len(specs) - len(todo), 0, 0, 0, store.parquet, 0.0,
                          retried=sum(sp.run_key in again for sp in todo))
     if todo:
-        note = _manifest.machine_note(store.root, timeout, lambda: _clock_decided(store))
+        note = _machine_note(store, timeout)
         if note:  # before the work, and whether or not progress is shown: it qualifies the results
             print(note, file=sys.stderr, flush=True)
         bar = Progress(ref.name, len(todo), progress)

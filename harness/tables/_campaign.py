@@ -23,7 +23,7 @@ from .._store import failure_kind
 from ._base import Table, count
 
 __all__ = ["reference_values", "classify_runs", "campaign_tables", "common_limit", "judged_under", "clock_stopped",
-           "SOLVED_ER", "FEAS_TOL"]
+           "clock_decided", "SOLVED_ER", "FEAS_TOL"]
 
 SOLVED_ER = 1e-5
 FEAS_TOL = 1e-6
@@ -71,6 +71,13 @@ def clock_stopped(runs: pd.DataFrame) -> pd.Series:
 
     col = runs["extra"] if "extra" in runs else pd.Series("{}", index=runs.index)
     return col.map(stopped).astype(bool)
+
+
+def clock_decided(runs: pd.DataFrame) -> pd.Series:
+    """Runs whose outcome the wall clock decided: time-outs and the searches `clock_stopped` marks.
+    Neither reproduces on a machine of another speed (baselines leave them out; `harness run`
+    notes them before mixing machines)."""
+    return (runs["status"] == "timeout") | clock_stopped(runs)
 
 
 def common_limit(runs: pd.DataFrame) -> float:
