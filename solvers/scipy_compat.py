@@ -5,33 +5,95 @@
 >>> res = minimize(rosen, x0, jac=rosen_der, method=method("sqsd"), options={"rho": 0.3})
 
 The thesis optimizers then interoperate with SciPy-based tools. Constraints are given as
-SciPy dicts (``{"type": "ineq", "fun": c}`` meaning c(x) >= 0, or ``"eq"``); they are
-converted to this project's g(x) <= 0 convention by negation in `_to_problem`.
+SciPy dicts (``{"type": "ineq", "fun": c}`` meaning c(x) >= 0, or ``"eq"``; each with its
+own ``jac`` and ``args``) or as `scipy.optimize.NonlinearConstraint` /
+`scipy.optimize.LinearConstraint` (lb <= c(x) <= ub); they are converted to this project's
+g(x) <= 0, h(x) = 0 convention in `_to_problem`.  ``tol`` and ``callback`` have no
+counterpart here and are refused with the solver's own tolerance options named; ``hess``
+and ``hessp`` are not used (the solvers build their own curvature models), with a warning,
+as SciPy warns for its methods that do not use them.
 """
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
-from scipy.optimize import OptimizeResult
+from scipy.optimize import LinearConstraint, NonlinearConstraint, OptimizeResult
 
 from problems import Problem
 
+from ._registry import get_solver_class
 from ._solve import solve
 
 __all__ = ["method"]
 
+#: one constraint block in SciPy's sign (c >= 0 or c = 0): its function and Jacobian (None:
+#: finite differences), each taking x alone (the block's own ``args`` already bound)
+_Block = tuple[Callable[[np.ndarray], np.ndarray], Callable[[np.ndarray], np.ndarray] | None]
 
-def _stack(funcs: Sequence[Callable], args: tuple, sign: float) -> Callable[[np.ndarray], np.ndarray]:
-    return lambda x: sign * np.concatenate([np.atleast_1d(np.asarray(f(x, *args), dtype=float)) for f in funcs])
+
+def _bound(f: Callable, args: tuple) -> Callable[[np.ndarray], Any]:
+    return lambda x: f(x, *args)
 
 
-def _stack_jac(funcs: Sequence[Callable | None], args: tuple, sign: float) -> Callable | None:
+def _stack(funcs: Sequence[Callable], sign: float) -> Callable[[np.ndarray], np.ndarray]:
+    return lambda x: sign * np.concatenate([np.atleast_1d(np.asarray(f(x), dtype=float)) for f in funcs])
+
+
+def _stack_jac(funcs: Sequence[Callable | None], sign: float) -> Callable | None:
     if any(f is None for f in funcs):
         return None
-    return lambda x: sign * np.vstack([np.atleast_2d(np.asarray(f(x, *args), dtype=float)) for f in funcs])
+    return lambda x: sign * np.vstack([np.atleast_2d(np.asarray(f(x), dtype=float)) for f in funcs])
+
+
+def _from_dict(c: dict) -> tuple[str, _Block]:
+    """A SciPy constraint dict -> (type, block), with its own ``args``."""
+    if not isinstance(c, dict) or "type" not in c or "fun" not in c:
+        raise TypeError("each constraint must be a dict {'type': 'ineq' | 'eq', 'fun': c[, 'jac', 'args']} or a "
+                        f"scipy.optimize.NonlinearConstraint / LinearConstraint, got {c!r}")
+    if c["type"] not in ("ineq", "eq"):
+        raise ValueError(f"constraint type must be 'ineq' or 'eq', got {c['type']!r}")
+    args = tuple(c.get("args", ()))
+    jac = c.get("jac")
+    return c["type"], (_bound(c["fun"], args), _bound(jac, args) if callable(jac) else None)
+
+
+def _from_bounds_form(fun: Callable, jac: Callable | None, lb, ub, x0: np.ndarray) -> list[tuple[str, _Block]]:
+    """lb <= fun(x) <= ub (SciPy's new-style constraints) -> 'eq' rows where lb == ub, and
+    'ineq' rows fun - lb >= 0 and ub - fun >= 0 where those bounds are finite."""
+    m = np.atleast_1d(np.asarray(fun(np.asarray(x0, dtype=float)), dtype=float)).size
+    lb = np.broadcast_to(np.asarray(lb, dtype=float), (m,))
+    ub = np.broadcast_to(np.asarray(ub, dtype=float), (m,))
+    if np.any(np.isnan(lb)) or np.any(np.isnan(ub)) or np.any(lb > ub):
+        raise ValueError(f"constraint bounds must satisfy lb <= ub (no NaN), got lb={lb}, ub={ub}")
+    val = lambda x: np.atleast_1d(np.asarray(fun(x), dtype=float))
+    jv = None if jac is None else (lambda x: np.atleast_2d(np.asarray(jac(x), dtype=float)))
+    out: list[tuple[str, _Block]] = []
+    for kind, rows, shift, sign in (("eq", lb == ub, lb, 1.0), ("ineq", (lb < ub) & np.isfinite(lb), lb, 1.0),
+                                    ("ineq", (lb < ub) & np.isfinite(ub), ub, -1.0)):
+        if rows.any():
+            r, s0, sg = np.flatnonzero(rows), shift[rows], sign
+            out.append((kind, (lambda x, r=r, s0=s0, sg=sg: sg * (val(x)[r] - s0),
+                               None if jv is None else (lambda x, r=r, sg=sg: sg * jv(x)[r]))))
+    return out
+
+
+def _blocks(constraints: Any, x0: np.ndarray) -> list[tuple[str, _Block]]:
+    if isinstance(constraints, (dict, NonlinearConstraint, LinearConstraint)):
+        constraints = [constraints]
+    out: list[tuple[str, _Block]] = []
+    for c in constraints:
+        if isinstance(c, NonlinearConstraint):
+            out += _from_bounds_form(c.fun, c.jac if callable(c.jac) else None, c.lb, c.ub, x0)
+        elif isinstance(c, LinearConstraint):
+            A = np.atleast_2d(np.asarray(c.A.toarray() if hasattr(c.A, "toarray") else c.A, dtype=float))
+            out += _from_bounds_form(lambda x, A=A: A @ x, lambda x, A=A: A, c.lb, c.ub, x0)
+        else:
+            out.append(_from_dict(c))
+    return out
 
 
 def _to_problem(fun, x0, args=(), jac=None, bounds=None, constraints=()) -> Problem:
@@ -44,20 +106,16 @@ def _to_problem(fun, x0, args=(), jac=None, bounds=None, constraints=()) -> Prob
         gradient = lambda x: np.asarray(fun(x, *args)[1], dtype=float)
     else:
         objective, gradient = (lambda x: float(fun(x, *args))), None
-    if isinstance(constraints, dict):
-        constraints = [constraints]
-    ineq = [c for c in constraints if c["type"] == "ineq"]
-    eq = [c for c in constraints if c["type"] == "eq"]
-    bad = [c["type"] for c in constraints if c["type"] not in ("ineq", "eq")]
-    if bad:
-        raise ValueError(f"constraint type must be 'ineq' or 'eq', got {bad}")
+    blocks = _blocks(constraints, x0)
+    ineq = [b for t, b in blocks if t == "ineq"]
+    eq = [b for t, b in blocks if t == "eq"]
     kw: dict[str, Any] = {}
     if ineq:
-        kw["ineq"] = _stack([c["fun"] for c in ineq], tuple(ineq[0].get("args", ())), -1.0)
-        kw["ineq_jacobian"] = _stack_jac([c.get("jac") for c in ineq], tuple(ineq[0].get("args", ())), -1.0)
+        kw["ineq"] = _stack([f for f, _ in ineq], -1.0)
+        kw["ineq_jacobian"] = _stack_jac([j for _, j in ineq], -1.0)
     if eq:
-        kw["eq"] = _stack([c["fun"] for c in eq], tuple(eq[0].get("args", ())), 1.0)
-        kw["eq_jacobian"] = _stack_jac([c.get("jac") for c in eq], tuple(eq[0].get("args", ())), 1.0)
+        kw["eq"] = _stack([f for f, _ in eq], 1.0)
+        kw["eq_jacobian"] = _stack_jac([j for _, j in eq], 1.0)
     if bounds is not None:
         lb = getattr(bounds, "lb", None)
         if lb is not None:
@@ -79,6 +137,19 @@ def method(name: str, **fixed: Any) -> Callable[..., OptimizeResult]:
 
     def _minimize(fun, x0, args=(), jac=None, hess=None, hessp=None, bounds=None, constraints=(),
                   tol=None, callback=None, **options: Any) -> OptimizeResult:
+        if tol is not None:
+            tols = [o["name"] for o in get_solver_class(name).options()
+                    if o["name"].startswith("eps") or "tol" in o["name"]]
+            raise ValueError(f"method({name!r}) does not take SciPy's generic tol: set the solver's own tolerances "
+                             f"in options instead ({', '.join(tols) or 'it has none'}; "
+                             "python -m harness list solvers shows what each means)")
+        if callback is not None:
+            raise ValueError(f"method({name!r}) does not call a callback during the run; every evaluated point "
+                             "is in the result's history (solvers.solve(...).history)")
+        for given, what in ((hess, "hess"), (hessp, "hessp")):
+            if given is not None:
+                warnings.warn(f"method({name!r}) does not use Hessian information ({what})", RuntimeWarning,
+                              stacklevel=3)
         problem = _to_problem(fun, x0, args, jac, bounds, constraints)
         r = solve(problem, name, **{**fixed, **options})
         return OptimizeResult(x=r.x, fun=r.f, success=r.success, status=0 if r.success else 1,
