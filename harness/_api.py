@@ -32,7 +32,15 @@ def load_results(suite: str | SuiteRef, out: str | os.PathLike[str] = "results")
     name = _suite_name(suite)
     store = Store(out, name)
     if not store.exists():
-        raise NoResults(f"no results for suite {name!r} under {pathlib.Path(out).resolve()}; "
+        from problems import suite_names
+
+        where = pathlib.Path(out).resolve()
+        if name not in suite_names():
+            stored = sorted(p.parent.name for p in where.glob("*/runs.parquet"))
+            raise NoResults(f"no results for suite {name!r} under {where}: it is not a built-in suite (built-in: "
+                            f"{', '.join(suite_names())}) and nothing is stored under that name there (stored: "
+                            f"{', '.join(stored) or 'none'})")
+        raise NoResults(f"no results for suite {name!r} under {where}; "
                         f"run `python -m harness run --suite {name} --out {out}` first")
     return store.load()
 

@@ -26,6 +26,8 @@ from typing import Any
 
 import pandas as pd
 
+from problems._catalog import check_suite_name
+
 from ._record import ROW_COLUMNS
 from ._worker import COUNT_COLUMNS, EXTRA_COLUMNS
 
@@ -155,6 +157,7 @@ class Store:
     """Read and write the runs of one suite under ``out``."""
 
     def __init__(self, out: str | os.PathLike[str], suite: str):
+        check_suite_name(suite, "the store's suite")  # the store is a directory under out: never outside it
         self.out = pathlib.Path(out)
         self.root = self.out / suite
         self.parquet = self.root / "runs.parquet"

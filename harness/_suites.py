@@ -19,6 +19,7 @@ import traceback
 from types import ModuleType
 
 from problems import Case, Problem, Suite, get_suite
+from problems._catalog import check_suite_name
 
 __all__ = ["SuiteRef", "load_suite", "suite_module", "SuiteFileError"]
 
@@ -73,6 +74,7 @@ def _file_module(path: str) -> ModuleType:
 def _suite_from_module(module: ModuleType, path: str) -> Suite:
     suite = getattr(module, "SUITE", None)
     if isinstance(suite, Suite):
+        check_suite_name(suite.name, f"SUITE.name in {path}")
         return suite
     problems = getattr(module, "PROBLEMS", None)
     if problems is None:
@@ -82,7 +84,12 @@ def _suite_from_module(module: ModuleType, path: str) -> Suite:
     if bad or not problems:
         raise ValueError(f"PROBLEMS in {path} must be a non-empty list of problems.Problem (got {bad or 'nothing'})")
     default_name = re.sub(r"[^a-z0-9\-]+", "-", pathlib.Path(path).stem.lower().replace("_", "-")).strip("-")
-    name = str(getattr(module, "NAME", default_name) or "user")
+    name = check_suite_name(str(getattr(module, "NAME", default_name) or "user"), f"NAME in {path}")
+    names = [p.name for p in problems]
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        raise ValueError(f"PROBLEMS in {path} has several problems named {', '.join(map(repr, dup))}: every "
+                         "problem needs its own name (it is the problem's id in the results)")
     solvers = tuple(getattr(module, "SOLVERS", ()))
     cases = [Case(problem=p, problem_id=p.name) for p in problems]
     return Suite(name=name, description=(module.__doc__ or f"problems from {path}").strip().splitlines()[0],

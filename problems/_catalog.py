@@ -8,12 +8,14 @@ a name already taken is refused.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from ._registry import Registry, UnknownName
 from ._suite import Suite
 
-__all__ = ["REGISTRY", "get_suite", "suite_names", "register_suite", "unregister_suite", "UnknownSuite"]
+__all__ = ["REGISTRY", "get_suite", "suite_names", "register_suite", "unregister_suite", "UnknownSuite",
+           "check_suite_name"]
 
 BUILTIN: dict[str, str] = {
     "appendix-a": "problems.appendix_a:SUITE",
@@ -23,11 +25,25 @@ BUILTIN: dict[str, str] = {
     "rpr2-exact": "manipulators.synthesis.rpr2_exact_suite:SUITE",
     "rpr3-exact": "manipulators.synthesis.rpr3_exact_suite:SUITE",
     "rpr3": "manipulators.synthesis.rpr3_suite:SUITE",
+    "rpr3-spread": "manipulators.synthesis.rpr3_spread_suite:SUITE",
     "tdpm": "manipulators.synthesis.tdpm_suite:SUITE",
     "hs-all": "problems.s2mpj.hs_all_suite:SUITE",
     "cutest": "problems.s2mpj.cutest_suite:SUITE",
     "spatial": "manipulators.synthesis.spatial_suite:SUITE",
 }
+
+
+#: a suite name is a directory under the harness's ``--out`` and a prefix of the files written
+#: there: no path separators or leading dots (a suite file's NAME of "../../x" wrote outside it)
+SUITE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.\-]*")
+
+
+def check_suite_name(name: str, where: str = "suite") -> str:
+    """``name`` if it is a valid suite name, else ValueError saying what is allowed."""
+    if not (isinstance(name, str) and SUITE_NAME.fullmatch(name)):
+        raise ValueError(f"suite name {name!r} ({where}) is invalid: use letters, digits, '-', '_' and '.', "
+                         "starting with a letter or digit (it names a directory of results)")
+    return name
 
 
 class UnknownSuite(UnknownName):
@@ -56,7 +72,9 @@ def get_suite(name: str) -> Suite:
 def register_suite(suite: Suite) -> Suite:
     """Make ``suite`` available by its name to `get_suite` and ``python -m harness --suite``
     (in the process that registers it: a harness run imports the registering module with
-    ``--solver-module``).  A name already taken raises ValueError."""
+    ``--solver-module``).  A name already taken, or one that is not a plain directory name
+    (`check_suite_name`), raises ValueError."""
+    check_suite_name(getattr(suite, "name", None), "register_suite")  # type: ignore[arg-type]
     return REGISTRY.register(suite.name, suite)
 
 

@@ -48,6 +48,45 @@ def test_suite_file_raising_at_import(tmp_path, capsys):
     assert "line 3" in line and "boom" in line
 
 
+_ONE_PROBLEM = "from problems import Problem\n\nPROBLEMS = [{problems}]\n"
+_Q = "Problem(name='a', x0=[1.0], objective=lambda x: float(x[0] ** 2))"
+
+
+@pytest.mark.parametrize("name", ["../../escape", "/abs", "a/b", ".hidden"])
+def test_a_suite_name_that_is_not_a_plain_directory_name_is_refused(tmp_path, capsys, name):
+    bad = tmp_path / "named.py"
+    bad.write_text(f"NAME = {name!r}\n" + _ONE_PROBLEM.format(problems=_Q))
+    out = tmp_path / "out" / "deeper"
+    line = _one_line_error(capsys, 2, ["run", "--suite-file", str(bad), "--solvers", "sqsd", "--out", str(out),
+                                       "--quiet"])
+    assert "invalid" in line and "letters, digits" in line
+    assert not any(tmp_path.rglob("*.parquet")) and not any(tmp_path.rglob("*_summary.*"))
+
+
+def test_problems_with_one_name_are_bad_input(tmp_path, capsys):
+    bad = tmp_path / "dup.py"
+    bad.write_text(_ONE_PROBLEM.format(problems=f"{_Q}, {_Q}"))
+    line = _one_line_error(capsys, 2, ["run", "--suite-file", str(bad), "--solvers", "sqsd", "--out", str(tmp_path)])
+    assert "several problems named 'a'" in line
+
+
+def test_register_suite_refuses_a_path_like_name():
+    from problems import Suite, register_suite
+
+    with pytest.raises(ValueError, match="invalid"):
+        register_suite(Suite(name="../x", description="", build=list, solvers=()))
+
+
+def test_load_results_of_an_unknown_suite_says_so(tmp_path):
+    from harness import load_results
+    from harness._api import NoResults
+
+    with pytest.raises(NoResults, match="not a built-in suite.*hs"):
+        load_results("nope", tmp_path)
+    with pytest.raises(NoResults, match="run `python -m harness run --suite hs"):
+        load_results("hs", tmp_path)
+
+
 def test_report_out_missing(capsys):
     assert "does not exist" in _one_line_error(capsys, 2, ["report", "--out", "/nonexistent/results"])
 
