@@ -5,6 +5,9 @@
 >>> runs = harness.load_results("appendix-a")
 >>> tables, paths = harness.render_tables("appendix-a")
 
+``harness.pin_blas()``, called before NumPy is imported, loads the same numerical kernels as
+the harness's runs (their counts then match the stored ones; docs/harness.md).
+
 Command line: ``python -m harness --help``.  Names are imported lazily so that worker
 processes (which only need `harness._worker`) start without pandas or matplotlib.
 """
@@ -18,7 +21,7 @@ _EXPORTS = {
     "run_suite": "._runner", "plan_suite": "._runner", "prune_suite": "._runner", "RunSummary": "._runner",
     "load_results": "._api", "render_tables": "._api",
     "NoResults": "._api", "HarnessArgumentError": "._plan", "plot": "._plots", "write_report": "._report",
-    "compare_dirs": "._compare",
+    "compare_dirs": "._compare", "pin_blas": "._blas",
 }
 
 __all__ = list(_EXPORTS)

@@ -78,3 +78,15 @@ def test_manifest_records_the_pins_and_the_loops_in_use():
     simd = env["machine"]["numpy_simd"]
     if simd is not None and _blas._has_avx512() and os.environ.get("NPY_DISABLE_CPU_FEATURES"):
         assert "X86_V4" not in simd  # the pinned test session runs NumPy's AVX2 loops
+
+
+def test_a_script_pins_through_the_public_name_as_user_problems_md_shows():
+    """docs/user_problems.md: ``import harness; harness.pin_blas()`` before NumPy, in a plain
+    interpreter (the pin variables removed from its environment), loads the harness's kernels."""
+    if not _blas._has_avx2():
+        pytest.skip("no AVX2: OpenBLAS keeps its native kernels")
+    code = ("import os, harness; r = harness.pin_blas(); import numpy; "
+            "print(r, os.environ['OPENBLAS_CORETYPE'], os.environ['OPENBLAS_NUM_THREADS'])")
+    env = {k: v for k, v in os.environ.items() if k not in (*_blas.KERNEL_ENV, *_blas.THREAD_ENV)}
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    assert out.stdout.split() == [_blas.REFERENCE_CORETYPE, _blas.REFERENCE_CORETYPE, "1"]
