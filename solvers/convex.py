@@ -131,10 +131,44 @@ _SOLVER_OPTS = {
 }
 
 
+@functools.cache
+def _swallow_highs_banner() -> None:
+    """Build the process's first HiGHS object with the C stdout sent to /dev/null, once.
+
+    HiGHS prints its banner ("Running HiGHS ... Copyright ...") to the C-level stdout when the
+    first ``Highs`` object of a process is made, before any option (cvxpy's ``verbose``, HiGHS's
+    ``output_flag``) can silence it, so a user's tension query printed it into their output.
+    Later objects print nothing.
+    """
+    try:
+        import highspy
+    except ImportError:  # cvxpy then reports the missing solver itself
+        return
+    import ctypes
+    import os
+    import sys
+
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), 1)
+            highspy.Highs()
+            try:  # C stdio buffers (a pipe is block-buffered) go to /dev/null too
+                ctypes.CDLL(None).fflush(None)
+            except (OSError, AttributeError, TypeError):  # no C library handle (Windows): banner may show
+                pass
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+
+
 def _cvxpy_solve(kind, A, b, lb, ub, c, backend) -> ConvexResult:
     from problems._registry import require
 
     cp = require("cvxpy", f"backend {backend!r} of solvers.convex")
+    if backend == "highs":
+        _swallow_highs_banner()
 
     prob, x, params = _compiled(kind, A.shape[0], A.shape[1], backend)
     for p, v in zip(params, (A, b, lb, ub, c)):

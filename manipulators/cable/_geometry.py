@@ -61,6 +61,12 @@ def as_poses(u: np.ndarray, phi: np.ndarray | float) -> tuple[np.ndarray, np.nda
         P = np.full(U.shape[0], float(P))
     if P.shape != (U.shape[0],):
         raise ValueError(f"orientation phi must be a scalar or have shape ({U.shape[0]},), got {P.shape}")
+    # a NaN pose is bad input, named here; downstream it would read as an infeasible pose
+    bad = ~(np.all(np.isfinite(U), axis=1) & np.isfinite(P))
+    if bad.any():
+        i = np.flatnonzero(bad)
+        raise ValueError(f"poses contain NaN or inf at row(s) {i[:5].tolist()}{' ...' if i.size > 5 else ''}: "
+                         f"u = {U[i[0]].tolist()}, phi = {float(P[i[0]])}")
     return U, P
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from typing import Any
 
 import numpy as np
@@ -159,6 +160,10 @@ class CableRobot:
         """
         if method not in METHODS:
             raise ValueError(f"unknown tension method {method!r}; valid: {', '.join(METHODS)}")
+        if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol >= 0):
+            # tol widens the limits [t_min - tol, t_max + tol] the exact enumeration accepts: a
+            # negative one shifted every tension, a NaN one made every pose infeasible
+            raise ValueError(f"tol must be a finite number >= 0 (the tolerance on the tension limits), got {tol!r}")
         kin = self.kinematics(u, phi)
         k = kin["S"].shape[0]
         w = self._wrench(wrench, k)

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ._distribution6 import distribute6
+from ._distribution6 import distribute6, full_rank6
 
 __all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "ray_boundary", "ray_reach", "grid_points",
            "METHODS"]
@@ -44,6 +44,22 @@ def rotation_matrix(rotation: Any) -> np.ndarray:
 
         return Rotation.from_euler("xyz", r).as_matrix()
     raise ValueError(f"rotation must be a 3 x 3 matrix or 3 x-y-z angles; got shape {r.shape}")
+
+
+def positions_array(positions: Any) -> np.ndarray:
+    """Platform positions as a (k, 3) array: one position (3,) or k of them (k, 3), finite.
+
+    A NaN or infinite coordinate is refused here, with the offending rows named, rather than
+    read downstream as a singular or infeasible pose."""
+    p = np.atleast_2d(np.asarray(positions, dtype=float))
+    if p.ndim != 2 or p.shape[1] != 3:
+        raise ValueError(f"positions must be (3,) or (k, 3) coordinates in metres; got shape {np.shape(positions)}")
+    bad = ~np.all(np.isfinite(p), axis=1)
+    if bad.any():
+        rows = np.flatnonzero(bad)
+        raise ValueError(f"positions contain NaN or inf at row(s) {rows[:5].tolist()}"
+                         f"{' ...' if rows.size > 5 else ''}: {p[rows[0]].tolist()}")
+    return p
 
 
 def _points(name: str, value: Any) -> np.ndarray:
@@ -159,7 +175,7 @@ class SpatialCableRobot:
 
     def structure_matrices(self, positions: Any, rotation: Any) -> np.ndarray:
         """Structure matrices (k, 6, m) at k positions (k, 3) for one orientation."""
-        p = np.atleast_2d(np.asarray(positions, dtype=float))
+        p = positions_array(positions)
         R = rotation_matrix(rotation)
         rb = self.platform_points @ R.T  # (m, 3) world-frame platform vectors R b_i
         d = self.frame_points[None] - p[:, None, :] - rb[None]  # (k, m, 3)
@@ -189,6 +205,9 @@ class SpatialCableRobot:
         exact basic-solution enumeration (l1, min-norm); an LP/QP backend of
         `solvers.convex` ("highs", "clarabel", "osqp", "linprog") solves the convex program.
         "l2" always goes to a QP backend ("clarabel" when backend is "vector").
+        At a singular pose (S of rank < 6: the cables do not hold the platform in every
+        direction) every backend returns None, as the enumeration does, so that feasibility
+        never depends on the backend chosen.
         """
         if method not in METHODS:
             raise ValueError(f"unknown tension method {method!r}; valid: {', '.join(METHODS)}")
@@ -201,6 +220,8 @@ class SpatialCableRobot:
             return T[0] if feas[0] else None
         from solvers.convex import solve_lp, solve_qp
 
+        if not full_rank6(S[None])[0]:  # the enumeration's rank test (null_space_form), per pose
+            return None
         lb, ub = np.full(self.m, self.t_min), np.full(self.m, self.t_max)
         if method == "l1":
             res = solve_lp(np.ones(self.m), S, -w, lb, ub, backend=backend)

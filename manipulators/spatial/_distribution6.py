@@ -20,7 +20,8 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["basic_solutions", "distribute6", "null_space_form", "min_norm6", "SINGULAR_TOL", "VECTOR_METHODS"]
+__all__ = ["basic_solutions", "distribute6", "null_space_form", "min_norm6", "full_rank6", "SINGULAR_TOL",
+           "VECTOR_METHODS"]
 
 #: |det| of a 6 x 6 minor, relative to the product of its column norms, below which the
 #: minor is treated as singular.
@@ -43,6 +44,18 @@ def min_norm6(S: np.ndarray, w: np.ndarray) -> np.ndarray:
     return -np.einsum("kmi,ki->km", np.linalg.pinv(S), w)
 
 
+def _rank_test(R6: np.ndarray) -> np.ndarray:
+    """Full rank from the triangular factor R6 (k, 6, 6) of S^T: min |R_ii| / max |R_ii| > SINGULAR_TOL."""
+    d = np.abs(np.diagonal(R6, axis1=1, axis2=2))
+    return d.min(axis=1) > SINGULAR_TOL * d.max(axis=1)
+
+
+def full_rank6(S: np.ndarray) -> np.ndarray:
+    """(k,) True where the structure matrix S (k, 6, m) has rank 6, by the test of `null_space_form`."""
+    R = np.asarray(np.linalg.qr(np.swapaxes(S, 1, 2), mode="r"))  # (k, 6, 6) for m >= 6 cables
+    return _rank_test(R[:, :6, :])
+
+
 def null_space_form(S: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """All solutions of S t + w = 0 as t = t^p + N lambda, from one batched QR of S^T.
 
@@ -53,8 +66,7 @@ def null_space_form(S: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarra
     """
     Q, R = np.linalg.qr(np.swapaxes(S, 1, 2), mode="complete")  # Q (k, m, m), R (k, m, 6)
     R6 = R[:, :6, :]
-    d = np.abs(np.diagonal(R6, axis1=1, axis2=2))
-    full = d.min(axis=1) > SINGULAR_TOL * d.max(axis=1)
+    full = _rank_test(R6)
     safe = np.where(full[:, None, None], R6, np.eye(6))
     # S = R6^T Q1^T, so the minimum-norm solution is t^p = Q1 y with R6^T y = -w
     y = np.linalg.solve(np.swapaxes(safe, 1, 2), -w[..., None])[..., 0]

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ._cable import SpatialWorkspace, _points, grid_points, ray_boundary, rotation_matrix
+from ._cable import SpatialWorkspace, _points, grid_points, positions_array, ray_boundary, rotation_matrix
 
 __all__ = ["GoughStewart"]
 
@@ -56,7 +56,7 @@ class GoughStewart:
 
     def legs(self, positions: Any, rotation: Any) -> np.ndarray:
         """Leg vectors l_i = p + R b_i - a_i, (k, 6, 3), at k positions for one orientation."""
-        p = np.atleast_2d(np.asarray(positions, dtype=float))
+        p = positions_array(positions)
         R = rotation_matrix(rotation)
         return p[:, None, :] + (self.platform_points @ R.T)[None] - self.base_points[None]
 

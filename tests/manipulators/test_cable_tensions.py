@@ -268,3 +268,18 @@ def test_structure_matrix_is_jacobian_transpose_and_derivative():
         lp = robot.lengths(u + h * d[:2], phi + h * d[2])[0]
         lm = robot.lengths(u - h * d[:2], phi - h * d[2])[0]
         np.testing.assert_allclose((lp - lm) / (2 * h), -J[:, j], atol=1e-8)
+
+
+@pytest.mark.parametrize("tol", [-1.0, float("nan"), float("inf")])
+def test_a_negative_or_non_finite_tolerance_is_refused(tol):
+    robot = thesis_robot(4)
+    with pytest.raises(ValueError, match="tol must be a finite number >= 0"):
+        robot.tensions([0.2, -0.1], 0.0, loads()["L1"], "l1", tol=tol)
+
+
+def test_nan_poses_are_refused_with_the_row_named():
+    robot = thesis_robot(4)
+    with pytest.raises(ValueError, match=r"NaN or inf at row\(s\) \[0\]"):
+        robot.tensions([np.nan, -0.1], 0.0, loads()["L1"])
+    with pytest.raises(ValueError, match=r"row\(s\) \[1\].*phi = nan"):
+        robot.tensions_batch([[0.2, -0.1], [0.1, 0.0]], [0.0, np.nan], loads()["L1"])

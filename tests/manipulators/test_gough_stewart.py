@@ -84,3 +84,10 @@ def test_bad_input():
         GoughStewart(np.zeros((5, 3)), np.zeros((5, 3)), 1, 2)
     with pytest.raises(ValueError, match="l_min < l_max"):
         GoughStewart(np.eye(6, 3), np.eye(6, 3), 2, 1)
+
+
+def test_nan_positions_are_refused_with_the_row_named(hexapod):
+    with pytest.raises(ValueError, match=r"NaN or inf at row\(s\) \[0\]"):
+        hexapod.inverse_condition([[np.nan, 0.0, 1.2]], ROT)
+    with pytest.raises(ValueError, match=r"row\(s\) \[1\]"):
+        hexapod.feasible([[0.0, 0.0, 1.2], [0.0, 0.0, np.inf]], ROT)
