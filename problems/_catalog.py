@@ -8,10 +8,9 @@ a name already taken is refused.
 
 from __future__ import annotations
 
-import re
 from typing import Any
 
-from ._registry import Registry, UnknownName
+from ._registry import NAME, Registry, UnknownName
 from ._suite import Suite
 
 __all__ = ["REGISTRY", "get_suite", "suite_names", "register_suite", "unregister_suite", "UnknownSuite",
@@ -33,16 +32,13 @@ BUILTIN: dict[str, str] = {
 }
 
 
-#: a suite name is a directory under the harness's ``--out`` and a prefix of the files written
-#: there: no path separators or leading dots (a suite file's NAME of "../../x" wrote outside it)
-SUITE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.\-]*")
-
-
 def check_suite_name(name: str, where: str = "suite") -> str:
-    """``name`` if it is a valid suite name, else ValueError saying what is allowed."""
-    if not (isinstance(name, str) and SUITE_NAME.fullmatch(name)):
-        raise ValueError(f"suite name {name!r} ({where}) is invalid: use letters, digits, '-', '_' and '.', "
-                         "starting with a letter or digit (it names a directory of results)")
+    """``name`` if it is a valid suite name (kebab-case, as `register_suite` requires), else
+    ValueError.  A suite name is a directory of results and a prefix of the files written
+    there, so this also keeps a suite file's ``NAME`` from pointing outside ``--out``."""
+    if not (isinstance(name, str) and NAME.fullmatch(name)):
+        raise ValueError(f"suite name {name!r} ({where}) must be kebab-case (lower-case letters, digits, '-'): it "
+                         "names a directory of results")
     return name
 
 
@@ -72,9 +68,7 @@ def get_suite(name: str) -> Suite:
 def register_suite(suite: Suite) -> Suite:
     """Make ``suite`` available by its name to `get_suite` and ``python -m harness --suite``
     (in the process that registers it: a harness run imports the registering module with
-    ``--solver-module``).  A name already taken, or one that is not a plain directory name
-    (`check_suite_name`), raises ValueError."""
-    check_suite_name(getattr(suite, "name", None), "register_suite")  # type: ignore[arg-type]
+    ``--solver-module``).  A name already taken, or one that is not kebab-case, raises ValueError."""
     return REGISTRY.register(suite.name, suite)
 
 
