@@ -35,6 +35,7 @@ REFERENCE_MODULES: dict[str, str] = {
     "rpr2-exact": "manipulators.synthesis.rpr2_exact_suite",
     "rpr3": "manipulators.synthesis.rpr3_exact",
     "rpr3-exact": "manipulators.synthesis.rpr3_exact",
+    "rpr3-spread": "manipulators.synthesis.rpr3_exact",
     "cutest": "harness._best_known",
     "hs-all": "harness._best_known",
 }

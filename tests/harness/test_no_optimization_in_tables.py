@@ -65,7 +65,10 @@ def test_the_patch_catches_an_optimization(no_optimizers):
         solvers.solve(hs.problem("10"), "scipy-slsqp")
 
 
-@pytest.mark.parametrize("suite", [s for s in SUITES if s not in ("rpr3",)])
+SLOW_TABLES = ("rpr3", "rpr3-spread")  # exact enclosures of every design (D: 201 slices), ~20 s each
+
+
+@pytest.mark.parametrize("suite", [s for s in SUITES if s not in SLOW_TABLES])
 def test_tables_render_without_optimizing(suite, no_optimizers):
     runs = load_results(suite, RESULTS)
     tables = build_tables(suite, runs, reference=load_reference(RESULTS, suite))
@@ -73,8 +76,10 @@ def test_tables_render_without_optimizing(suite, no_optimizers):
 
 
 @pytest.mark.slow
-def test_rpr3_tables_render_without_optimizing(no_optimizers):
-    """rpr3's tables take ~20 s (exact enclosures of every design on 201 slices): slow marker."""
-    runs = load_results("rpr3", RESULTS)
-    tables = build_tables("rpr3", runs, reference=load_reference(RESULTS, "rpr3"))
+@pytest.mark.parametrize("suite", SLOW_TABLES)
+def test_rpr3_tables_render_without_optimizing(suite, no_optimizers):
+    """rpr3's and rpr3-spread's tables take ~20 s (exact enclosures of every design on 201
+    slices): slow marker."""
+    runs = load_results(suite, RESULTS)
+    tables = build_tables(suite, runs, reference=load_reference(RESULTS, suite))
     assert tables and all(len(t.frame) for t in tables)

@@ -1,4 +1,4 @@
-"""Suite rpr2-spread (Dynamic-Q from starts within 1e-6 of SP1-SP4) and its table plug-in."""
+"""Suite rpr2-spread (Dynamic-Q and Dynamic-Q+ from starts within 1e-6 of SP1-SP4) and its table plug-in."""
 
 import json
 
@@ -15,7 +15,7 @@ from problems import get_suite
 
 def test_suite_is_registered_and_has_every_start_and_copy():
     suite = get_suite("rpr2-spread")
-    assert suite.solvers == ("dynamic-q",)
+    assert suite.solvers == ("dynamic-q", "dynamic-q-plus")
     cases = suite.cases()
     assert len(cases) == 2 * len(STARTS) * (S.N_PERTURBED + 1)
     assert {c.problem_id for c in cases} == {"rpr2-o", "rpr2-e"}
@@ -64,16 +64,30 @@ def test_table_counts_ends_within_the_tolerance_of_table_4_7():
     runs = pd.DataFrame([{"problem": p, "start": s, "solver": "dynamic-q", "f": f, "x": json.dumps(x), "nfg": 10,
                           "status": "converged"} for p, s, f, x in rows])
     (table,) = build_tables("rpr2-spread", runs)
-    frame = table.frame.set_index(["synthesis", "start"])
-    e = frame.loc[("E", "SP1")]
+    frame = table.frame.set_index(["synthesis", "start", "solver"])
+    e = frame.loc[("E", "SP1", "dynamic-q")]
     assert e["runs"] == 3 and e["within tolerance"] == "1 of 3"
+    assert e["f* <= 3.2, dW_p <= 0.01"] == "1 of 3"  # only the SP2 design: SP1's leaves dW_p 0.0109
     assert e["f* min"] == "2.8497" and e["f* max"] == "6.0000" and e["thesis f* vs ends"] == "inside"
-    o = frame.loc[("O", "SP2")]
+    o = frame.loc[("O", "SP2", "dynamic-q")]
     assert o["within tolerance"] == "2 of 2" and o["f* from the start itself"] == "0.6174"
+    assert o["f* <= 3.2, dW_p <= 0.01"] == ""  # E's target only
     assert o["thesis f* vs ends"] == "0.000982 above all"  # thesis SP2: 0.618382
-    o3 = frame.loc[("O", "SP3")]
+    o3 = frame.loc[("O", "SP3", "dynamic-q")]
     assert o3["within tolerance"] == "0 of 1" and o3["thesis f* vs ends"] == "0.05956 below all"
     assert o3["f* from the start itself"] == ""  # no run from SP3 itself
+
+
+def test_table_has_one_row_per_solver_with_the_literal_algorithm_first():
+    sp2 = json.dumps([-4.570, -2.203, 4.545, 5.542, 5.527])
+    rows = [("dynamic-q-plus", "SP2", 3.0), ("dynamic-q-plus", "SP2~1", 3.5), ("dynamic-q", "SP2", 2.85)]
+    runs = pd.DataFrame([{"problem": "rpr2-e", "start": s, "solver": v, "f": f, "x": sp2, "nfg": 10,
+                          "status": "converged"} for v, s, f in rows])
+    (table,) = build_tables("rpr2-spread", runs)
+    assert list(table.frame["solver"]) == ["dynamic-q", "dynamic-q-plus"]
+    plus = table.frame.iloc[1]
+    assert plus["runs"] == 2 and plus["f* from the start itself"] == "3.0000"
+    assert plus["f* <= 3.2, dW_p <= 0.01"] == "1 of 2"  # 3.5 is above the target
 
 
 def test_figure_plugin_draws_one_png(tmp_path):
@@ -82,6 +96,8 @@ def test_figure_plugin_draws_one_png(tmp_path):
     x = json.dumps([-4.570, -2.203, 4.545, 5.542, 5.527])
     runs = pd.DataFrame([{"problem": p, "start": s, "solver": "dynamic-q", "f": f, "x": x, "nfg": 10,
                           "status": "converged"}
-                         for p, s, f in [("rpr2-e", "SP1", 3.3), ("rpr2-e", "SP1~1", 3.1), ("rpr2-o", "SP3", 0.64)]])
+                         for p, s, f in [("rpr2-e", "SP1", 3.3), ("rpr2-e", "SP1~1", 3.1), ("rpr2-o", "SP3", 0.64)]]
+                        + [{"problem": "rpr2-e", "start": "SP1", "solver": "dynamic-q-plus", "f": 3.2, "x": x,
+                            "nfg": 10, "status": "failed"}])
     (path,) = thesis_figures("rpr2-spread", runs, tmp_path)
     assert path.exists() and path.stat().st_size > 10_000
