@@ -61,6 +61,7 @@ def spread_table(runs: pd.DataFrame, kind: str, optima: dict) -> Table:
                 "f* median": _num(np.median(fin) if fin.size else math.nan, ".4f"),
                 "f* max": _num(fin.max() if fin.size else math.nan, ".4f"),
                 "enclosed": f"{sum(enc)} of {len(g)}",
+                "f* of the enclosed ends": _span([float(k) for k, gd in zip(kinv, good) if gd], ".4f"),
                 "enclosed, f* >= exact local min - 0.01": (
                     f"{sum(gd and k >= local - F_TOL for gd, k in zip(good, kinv))} of {len(g)}"
                     if math.isfinite(local) else ""),

@@ -72,7 +72,7 @@ def test_table_counts_enclosed_ends_against_the_stored_optima():
     assert list(mo.frame["solver"]) == ["dynamic-q", "dynamic-q-plus"]
     plus = frame.loc["dynamic-q-plus"]
     assert plus["runs"] == 3 and plus["f* from d0"] == "0.4291" and plus["f* max"] == "0.9000"
-    assert plus["enclosed"] == "2 of 3"
+    assert plus["enclosed"] == "2 of 3" and plus["f* of the enclosed ends"] == "0.1700-0.4291"
     assert plus["enclosed, f* >= exact local min - 0.01"] == "2 of 3"
     assert plus["enclosed, f* >= exact best - 0.01"] == "1 of 3"
     assert frame.loc["dynamic-q", "enclosed"] == "0 of 1"
