@@ -26,6 +26,8 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
+from problems._catalog import is_suite_name
+
 from ._api import NoResults, load_results
 from ._plan import HarnessArgumentError
 from ._store import Store
@@ -170,7 +172,7 @@ def compare_dirs(old: str | os.PathLike[str], new: str | os.PathLike[str], suite
         root = pathlib.Path(d)
         if not root.is_dir():
             raise HarnessArgumentError(f"{d} is not a directory")
-        return set(suites_under(d)) | {p.parent.name for p in root.glob("*/counts.csv")}
+        return set(suites_under(d)) | {p.parent.name for p in root.glob("*/counts.csv") if is_suite_name(p.parent.name)}
 
     common = sorted(names(old) & names(new))
     if suite is not None:

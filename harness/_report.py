@@ -18,6 +18,8 @@ from typing import TextIO
 
 import pandas as pd
 
+from problems._catalog import is_suite_name
+
 from ._api import load_results
 from ._plan import HarnessArgumentError
 from ._profiles import solver_labels
@@ -37,7 +39,9 @@ def suites_under(out: str | os.PathLike[str]) -> list[str]:
     root = pathlib.Path(out)
     if not root.is_dir():
         return []
-    return sorted(d.name for d in root.iterdir() if d.is_dir() and Store(root, d.name).exists())
+    # other directories (a user's notes, __pycache__) are not suites: their names are not suite names
+    return sorted(d.name for d in root.iterdir()
+                  if d.is_dir() and is_suite_name(d.name) and Store(root, d.name).exists())
 
 
 def solver_summary(runs: pd.DataFrame) -> pd.DataFrame:

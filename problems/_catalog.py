@@ -14,7 +14,7 @@ from ._registry import NAME, Registry, UnknownName
 from ._suite import Suite
 
 __all__ = ["REGISTRY", "get_suite", "suite_names", "register_suite", "unregister_suite", "UnknownSuite",
-           "check_suite_name"]
+           "check_suite_name", "is_suite_name"]
 
 BUILTIN: dict[str, str] = {
     "appendix-a": "problems.appendix_a:SUITE",
@@ -32,11 +32,16 @@ BUILTIN: dict[str, str] = {
 }
 
 
+def is_suite_name(name: object) -> bool:
+    """Whether ``name`` is a valid suite name (kebab-case, `problems._registry.NAME`)."""
+    return isinstance(name, str) and NAME.fullmatch(name) is not None
+
+
 def check_suite_name(name: str, where: str = "suite") -> str:
     """``name`` if it is a valid suite name (kebab-case, as `register_suite` requires), else
     ValueError.  A suite name is a directory of results and a prefix of the files written
     there, so this also keeps a suite file's ``NAME`` from pointing outside ``--out``."""
-    if not (isinstance(name, str) and NAME.fullmatch(name)):
+    if not is_suite_name(name):
         raise ValueError(f"suite name {name!r} ({where}) must be kebab-case (lower-case letters, digits, '-'): it "
                          "names a directory of results")
     return name

@@ -108,3 +108,18 @@ def test_compare_exit_codes_distinguish_regressions_from_failures(tmp_path, caps
     capsys.readouterr()
     line = _one_line_error(capsys, 3, ["compare", str(a), str(b)])
     assert "repair" in line
+
+
+def test_directories_that_are_not_suites_are_skipped_by_report_and_compare(tmp_path):
+    """A results directory may hold other folders (notes, __pycache__): the suite listing of
+    report and compare skips names that cannot be suites instead of refusing them."""
+    from harness._report import suites_under
+
+    assert main(["run", "--suite-file", TINY, "--solvers", "sqsd", "--problems", "q2", "--out", str(tmp_path),
+                 "--quiet"]) == 0
+    (tmp_path / "My Notes").mkdir()
+    (tmp_path / "__pycache__").mkdir()
+    (tmp_path / "Old_Runs").mkdir()
+    (tmp_path / "Old_Runs" / "counts.csv").write_text("")
+    assert suites_under(tmp_path) == ["tiny"]
+    assert main(["compare", str(tmp_path), str(tmp_path)]) == 0
