@@ -29,6 +29,9 @@ def inverse_condition(xA: float, yA: float, xB: float, U) -> np.ndarray:
     """kappa^-1 = det J = (y - yA)(xB - xA) / (l1 l2) (eq. 4.23, D.15) for any base
     (also xA == xB, where it is 0); NaN at the pivots."""
     U = as_points(U, "U")
+    if not np.all(np.isfinite(U)):
+        i = np.flatnonzero(~np.all(np.isfinite(U), axis=1))
+        raise ValueError(f"positions U contain NaN or inf at row(s) {i[:5].tolist()}: {U[i[0]].tolist()}")
     dy = U[:, 1] - yA
     with np.errstate(divide="ignore", invalid="ignore"):
         return dy * (xB - xA) / (np.hypot(U[:, 0] - xA, dy) * np.hypot(U[:, 0] - xB, dy))
@@ -83,8 +86,12 @@ class RPR2:
             if not np.isfinite(v):
                 raise ValueError(f"RPR2: {k} must be finite, got {v}")
             set_(k, v)
-        lo = tuple(float(v) for v in np.broadcast_to(np.asarray(self.l_min, dtype=float), (2,)))
-        hi = tuple(float(v) for v in np.broadcast_to(np.asarray(self.l_max, dtype=float), (2,)))
+        try:
+            lo = tuple(float(v) for v in np.broadcast_to(np.asarray(self.l_min, dtype=float), (2,)))
+            hi = tuple(float(v) for v in np.broadcast_to(np.asarray(self.l_max, dtype=float), (2,)))
+        except ValueError:  # NumPy's broadcast message names no leg limit
+            raise ValueError(f"RPR2: l_min and l_max must each be a number or two numbers (one per leg), got "
+                             f"l_min={self.l_min!r}, l_max={self.l_max!r}") from None
         if not all(np.isfinite(lo + hi)):
             raise ValueError(f"RPR2: leg limits must be finite, got l_min={lo}, l_max={hi}")
         if min(lo) <= 0:
