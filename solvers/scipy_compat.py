@@ -62,8 +62,9 @@ def _from_dict(c: dict) -> tuple[str, _Block]:
 
 
 def _from_bounds_form(fun: Callable, jac: Callable | None, lb, ub, x0: np.ndarray) -> list[tuple[str, _Block]]:
-    """lb <= fun(x) <= ub (SciPy's new-style constraints) -> 'eq' rows where lb == ub, and
-    'ineq' rows fun - lb >= 0 and ub - fun >= 0 where those bounds are finite."""
+    """lb <= fun(x) <= ub (SciPy's new-style constraints) -> an 'eq' block fun - lb = 0 on the
+    rows where lb == ub, and one 'ineq' block [fun - lb; ub - fun] >= 0 on the rows whose lower
+    / upper bound is finite (one evaluation of fun per block, however many sides it has)."""
     m = np.atleast_1d(np.asarray(fun(np.asarray(x0, dtype=float)), dtype=float)).size
     lb = np.broadcast_to(np.asarray(lb, dtype=float), (m,))
     ub = np.broadcast_to(np.asarray(ub, dtype=float), (m,))
@@ -72,12 +73,21 @@ def _from_bounds_form(fun: Callable, jac: Callable | None, lb, ub, x0: np.ndarra
     val = lambda x: np.atleast_1d(np.asarray(fun(x), dtype=float))
     jv = None if jac is None else (lambda x: np.atleast_2d(np.asarray(jac(x), dtype=float)))
     out: list[tuple[str, _Block]] = []
-    for kind, rows, shift, sign in (("eq", lb == ub, lb, 1.0), ("ineq", (lb < ub) & np.isfinite(lb), lb, 1.0),
-                                    ("ineq", (lb < ub) & np.isfinite(ub), ub, -1.0)):
-        if rows.any():
-            r, s0, sg = np.flatnonzero(rows), shift[rows], sign
-            out.append((kind, (lambda x, r=r, s0=s0, sg=sg: sg * (val(x)[r] - s0),
-                               None if jv is None else (lambda x, r=r, sg=sg: sg * jv(x)[r]))))
+    eq = np.flatnonzero(lb == ub)
+    if eq.size:
+        out.append(("eq", (lambda x: val(x)[eq] - lb[eq], None if jv is None else (lambda x: jv(x)[eq]))))
+    lo = np.flatnonzero((lb < ub) & np.isfinite(lb))
+    hi = np.flatnonzero((lb < ub) & np.isfinite(ub))
+    if lo.size or hi.size:
+        def ineq(x: np.ndarray) -> np.ndarray:
+            v = val(x)
+            return np.concatenate([v[lo] - lb[lo], ub[hi] - v[hi]])
+
+        def ineq_jac(x: np.ndarray) -> np.ndarray:
+            J = jv(x)  # type: ignore[misc]  # only built when jv is given
+            return np.vstack([J[lo], -J[hi]])
+
+        out.append(("ineq", (ineq, None if jv is None else ineq_jac)))
     return out
 
 
