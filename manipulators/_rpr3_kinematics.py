@@ -23,7 +23,16 @@ def _poses(U, w):
         U = U[None, :]
     if U.ndim != 2 or U.shape[1] != 2:
         raise ValueError(f"positions U must have shape (k, 2), got {U.shape}")
-    w = np.broadcast_to(np.asarray(w, dtype=float), (U.shape[0],))
+    w = np.asarray(w, dtype=float)
+    if w.ndim != 0 and w.shape != (U.shape[0],):
+        raise ValueError(f"orientation phi must be a number or one per position ({U.shape[0]},), got shape {w.shape}")
+    w = np.broadcast_to(w, (U.shape[0],))
+    # a NaN pose is bad input, named here; downstream kappa^-1 would read it as a singularity (0)
+    bad = ~(np.all(np.isfinite(U), axis=1) & np.isfinite(w))
+    if bad.any():
+        i = np.flatnonzero(bad)
+        raise ValueError(f"poses contain NaN or inf at row(s) {i[:5].tolist()}{' ...' if i.size > 5 else ''}: "
+                         f"u = {U[i[0]].tolist()}, phi = {float(w[i[0]])}")
     return U, w
 
 
