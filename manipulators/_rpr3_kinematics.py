@@ -11,34 +11,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._checks import planar_poses
+
 __all__ = ["leg_vectors", "leg_lengths", "jacobian", "inverse_condition", "LEG_SIGN"]
 
 #: Which platform end a leg attaches to: -1 for A = u - r e(w) (legs 1, 2), +1 for B (leg 3).
 LEG_SIGN = np.array([-1.0, -1.0, 1.0])
 
 
-def _poses(U, w):
-    U = np.asarray(U, dtype=float)
-    if U.ndim == 1:
-        U = U[None, :]
-    if U.ndim != 2 or U.shape[1] != 2:
-        raise ValueError(f"positions U must have shape (k, 2), got {U.shape}")
-    w = np.asarray(w, dtype=float)
-    if w.ndim != 0 and w.shape != (U.shape[0],):
-        raise ValueError(f"orientation phi must be a number or one per position ({U.shape[0]},), got shape {w.shape}")
-    w = np.broadcast_to(w, (U.shape[0],))
-    # a NaN pose is bad input, named here; downstream kappa^-1 would read it as a singularity (0)
-    bad = ~(np.all(np.isfinite(U), axis=1) & np.isfinite(w))
-    if bad.any():
-        i = np.flatnonzero(bad)
-        raise ValueError(f"poses contain NaN or inf at row(s) {i[:5].tolist()}{' ...' if i.size > 5 else ''}: "
-                         f"u = {U[i[0]].tolist()}, phi = {float(w[i[0]])}")
-    return U, w
-
-
 def leg_vectors(base: np.ndarray, r: float, U, w) -> np.ndarray:
     """Leg vectors from the base joints to the platform joints, shape ``(k, 3, 2)`` (eq. 5.7)."""
-    U, w = _poses(U, w)
+    U, w = planar_poses(U, w)
     e = np.stack([np.cos(w), np.sin(w)], axis=1)  # (k, 2)
     platform = U[:, None, :] + (LEG_SIGN[None, :, None] * r) * e[:, None, :]
     return platform - base[None, :, :]
@@ -59,7 +42,7 @@ def jacobian(base: np.ndarray, r: float, U, w) -> np.ndarray:
     rotational column by ``v_i``), which reproduces Table 5.3's f(d0)
     (problems/reference/ERRATA.md).  ``J @ [r u1', r u2', w'] = v'``.
     """
-    U, w = _poses(U, w)
+    U, w = planar_poses(U, w)
     L = leg_vectors(base, r, U, w)
     v = np.sqrt(np.einsum("kij,kij->ki", L, L))
     x, y = L[..., 0], L[..., 1]

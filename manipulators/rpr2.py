@@ -14,7 +14,8 @@ import dataclasses
 import numpy as np
 import shapely
 
-from .workspace import Workspace, chord_boundary
+from ._checks import finite_rows
+from .workspace import Workspace, check_closed, chord_boundary, open_policy
 from .workspace._polygon import as_points
 
 __all__ = ["RPR2", "CONSTRAINT_NAMES", "inverse_condition", "lens_area"]
@@ -29,9 +30,7 @@ def inverse_condition(xA: float, yA: float, xB: float, U) -> np.ndarray:
     """kappa^-1 = det J = (y - yA)(xB - xA) / (l1 l2) (eq. 4.23, D.15) for any base
     (also xA == xB, where it is 0); NaN at the pivots."""
     U = as_points(U, "U")
-    if not np.all(np.isfinite(U)):
-        i = np.flatnonzero(~np.all(np.isfinite(U), axis=1))
-        raise ValueError(f"positions U contain NaN or inf at row(s) {i[:5].tolist()}: {U[i[0]].tolist()}")
+    finite_rows(U, "positions U")
     dy = U[:, 1] - yA
     with np.errstate(divide="ignore", invalid="ignore"):
         return dy * (xB - xA) / (np.hypot(U[:, 0] - xA, dy) * np.hypot(U[:, 0] - xB, dy))
@@ -213,17 +212,20 @@ class RPR2:
         k = int(np.argmax(margin))
         return P[k] if margin[k] > 0 else None
 
-    def workspace(self, chord: float = 0.1, **kw) -> Workspace:
+    def workspace(self, chord: float = 0.1, *, on_open: str = "warn", **kw) -> Workspace:
         """The workspace above the base line by the chord method (Appendix C).
 
         Keyword arguments go to `manipulators.workspace.chord_boundary`. An empty
         workspace (no leg-length pair reaches above the base line) gives
-        ``Workspace.empty()`` with ``info["reason"]``.
+        ``Workspace.empty()`` with ``info["reason"]``. A trace that does not close even at
+        the refined chords warns, raises or passes by ``on_open`` (`check_closed`).
         """
         u0 = self.interior_point()
         if u0 is None:
             return Workspace.empty(reason="no point above the base line satisfies the leg limits")
         kw.setdefault("jacobian", self.constraint_jacobian)
+        open_policy(on_open)
+        kw["on_open"] = "ignore"  # judged once, on the last trace
         ws = chord_boundary(self.constraints, u0, chord, **kw)
         # A trace of a simply connected region must close around the radiating point u0.
         # Where the region is narrower than the chord (the sharp tips of a thin crescent)
@@ -238,7 +240,7 @@ class RPR2:
             d *= 0.5
             ws = chord_boundary(self.constraints, u0, d, **kw)
             ws.info["refined_from"] = float(chord)  # type: ignore[index]  # a dict, read-only to users
-        return ws
+        return check_closed(ws, on_open, stacklevel=3)
 
     def exact_area(self, grad: bool = False):
         """Closed-form area of the workspace above the base line (the thesis's W_c,

@@ -29,6 +29,7 @@ import numpy as np
 
 from . import _orientation as orient
 from ._rpr3_kinematics import LEG_SIGN, inverse_condition, jacobian, leg_lengths
+from .workspace import check_closed, open_policy
 
 __all__ = ["RPR3", "M_DESIGNS", "DEFAULT_L_MIN", "DEFAULT_L_MAX"]
 
@@ -387,23 +388,34 @@ class RPR3:
         return [(float(a), float(b)) for a, b in zip(gap_lo[keep], gap_hi[keep])]
 
     # ------------------------------------------------------------------ workspaces
-    def workspace(self, phi: float = 0.0, chord: float = 0.02, **kw):
-        """Constant-orientation workspace ``W^C[phi]`` by the chord method (Section 5.4)."""
+    def workspace(self, phi: float = 0.0, chord: float = 0.02, *, on_open: str = "warn", **kw):
+        """Constant-orientation workspace ``W^C[phi]`` by the chord method (Section 5.4).
+
+        ``on_open``: a trace that does not close warns (default), raises or passes
+        (`manipulators.workspace.check_closed`); the same for every workspace method below.
+        """
         from ._rpr3_workspaces import constant_orientation_workspace
 
-        return constant_orientation_workspace(self, phi, chord, **kw)
+        open_policy(on_open)  # checked before the trace, applied to it after
+        ws = constant_orientation_workspace(self, phi, chord, on_open="ignore", **kw)
+        return check_closed(ws, on_open, stacklevel=3)
 
-    def dextrous_workspace(self, phi_min: float, phi_max: float, chord: float = 0.02, **kw):
+    def dextrous_workspace(self, phi_min: float, phi_max: float, chord: float = 0.02, *, on_open: str = "warn",
+                           **kw):
         """Dextrous workspace ``W^D[phi_min, phi_max]`` by Algorithm 5.1."""
         from ._rpr3_workspaces import dextrous_workspace
 
-        return dextrous_workspace(self, phi_min, phi_max, chord, **kw)
+        open_policy(on_open)  # checked before the trace, applied to it after
+        ws = dextrous_workspace(self, phi_min, phi_max, chord, on_open="ignore", **kw)
+        return check_closed(ws, on_open, stacklevel=3)
 
-    def maximal_workspace(self, chord: float = 0.02, **kw):
+    def maximal_workspace(self, chord: float = 0.02, *, on_open: str = "warn", **kw):
         """Maximal (reachable) workspace ``W^M`` (eq. C.4) by the chord method (Appendix C)."""
         from ._rpr3_workspaces import maximal_workspace
 
-        return maximal_workspace(self, chord, **kw)
+        open_policy(on_open)  # checked before the trace, applied to it after
+        ws = maximal_workspace(self, chord, on_open="ignore", **kw)
+        return check_closed(ws, on_open, stacklevel=3)
 
 
 def _points(U) -> np.ndarray:

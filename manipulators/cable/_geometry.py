@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._checks import planar_poses
+
 __all__ = [
     "frame_point",
     "as_poses",
@@ -51,23 +53,7 @@ def frame_point(beta: np.ndarray | float) -> np.ndarray:
 
 def as_poses(u: np.ndarray, phi: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
     """Validate and broadcast positions (k, 2) or (2,) and orientations (k,) or scalar."""
-    U = np.asarray(u, dtype=float)
-    if U.ndim == 1:
-        U = U[None, :]
-    if U.ndim != 2 or U.shape[1] != 2:
-        raise ValueError(f"positions u must have shape (2,) or (k, 2), got {np.shape(u)}")
-    P = np.asarray(phi, dtype=float)
-    if P.ndim == 0:
-        P = np.full(U.shape[0], float(P))
-    if P.shape != (U.shape[0],):
-        raise ValueError(f"orientation phi must be a scalar or have shape ({U.shape[0]},), got {P.shape}")
-    # a NaN pose is bad input, named here; downstream it would read as an infeasible pose
-    bad = ~(np.all(np.isfinite(U), axis=1) & np.isfinite(P))
-    if bad.any():
-        i = np.flatnonzero(bad)
-        raise ValueError(f"poses contain NaN or inf at row(s) {i[:5].tolist()}{' ...' if i.size > 5 else ''}: "
-                         f"u = {U[i[0]].tolist()}, phi = {float(P[i[0]])}")
-    return U, P
+    return planar_poses(u, phi)
 
 
 def platform_points_global(platform_points: np.ndarray, phi: np.ndarray) -> np.ndarray:

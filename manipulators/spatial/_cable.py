@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import finite_rows
 from ._distribution6 import distribute6, full_rank6
 
 __all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "ray_boundary", "ray_reach", "grid_points",
@@ -54,11 +55,7 @@ def positions_array(positions: Any) -> np.ndarray:
     p = np.atleast_2d(np.asarray(positions, dtype=float))
     if p.ndim != 2 or p.shape[1] != 3:
         raise ValueError(f"positions must be (3,) or (k, 3) coordinates in metres; got shape {np.shape(positions)}")
-    bad = ~np.all(np.isfinite(p), axis=1)
-    if bad.any():
-        rows = np.flatnonzero(bad)
-        raise ValueError(f"positions contain NaN or inf at row(s) {rows[:5].tolist()}"
-                         f"{' ...' if rows.size > 5 else ''}: {p[rows[0]].tolist()}")
+    finite_rows(p, "positions")
     return p
 
 

@@ -114,7 +114,7 @@ class _Workspaces:
         if m is None:
             return m, Workspace.empty(reason="invalid design")
         try:
-            return m, m.workspace(self.chord)
+            return m, m.workspace(self.chord, on_open="raise")  # an open trace is a failed one
         except Exception as exc:  # noqa: BLE001  (never crash mid-run; the design counts as empty)
             return m, Workspace.empty(reason=f"chord method failed: {exc}")
 

@@ -95,7 +95,8 @@ class _Evaluator:
         self._memo: DesignCache[tuple[RPR3 | None, list[Workspace]]] = DesignCache(size)
         self._wp: Any = None  # W_p as a shapely polygon, made on first use
 
-    # one workspace per slice (SO, MO) or the dextrous workspace (D)
+    # one workspace per slice (SO, MO) or the dextrous workspace (D); a trace that does not
+    # close raises (`check_closed`) and its slice counts as empty, like any chord failure
     def _workspaces(self, m: RPR3) -> list[Workspace]:
         centre = np.asarray(self.P.centre)
         phis = self.s["phis"]
@@ -103,14 +104,14 @@ class _Evaluator:
         if self.s["dextrous"]:
             a, b = min(phis), max(phis)
             inside = float(np.max(m.dextrous_constraints(centre[None, :], a, b))) < 0
-            ws = m.dextrous_workspace(a, b, self.chord, **({"interior": centre} if inside else {}))
+            ws = m.dextrous_workspace(a, b, self.chord, on_open="raise", **({"interior": centre} if inside else {}))
             ws.info["centre_inside"] = inside
             out.append(ws)
         else:
             for phi in phis:
                 inside = float(np.max(m.constraints(centre[None, :], phi))) < 0
                 try:
-                    ws = m.workspace(phi, self.chord, **({"interior": centre} if inside else {}))
+                    ws = m.workspace(phi, self.chord, on_open="raise", **({"interior": centre} if inside else {}))
                     ws.info["centre_inside"] = inside
                     out.append(ws)
                 except Exception as exc:  # noqa: BLE001  (this slice is empty)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable
 
 import numpy as np
@@ -17,7 +18,10 @@ from ._polygon import signed_area
 from ._roots import Evaluator, solve_bracket
 from ._workspace import Workspace
 
-__all__ = ["chord_boundary", "InfeasibleInterior", "ChordError"]
+__all__ = [
+    "chord_boundary", "check_closed", "open_policy",
+    "InfeasibleInterior", "ChordError", "OpenBoundary", "OpenBoundaryWarning",
+]
 
 TWO_PI = 2.0 * math.pi
 
@@ -28,6 +32,49 @@ class InfeasibleInterior(ValueError):
 
 class ChordError(RuntimeError):
     """The boundary could not be traced (no boundary along the ray, lost boundary)."""
+
+
+class OpenBoundary(ChordError):
+    """The trace did not close (``on_open="raise"``): its polygon is not the workspace's."""
+
+
+class OpenBoundaryWarning(RuntimeWarning):
+    """The trace did not close (``on_open="warn"``, the default): ``area`` is not the workspace's."""
+
+
+ON_OPEN = ("warn", "raise", "ignore")
+
+
+def open_policy(on_open: str) -> str:
+    """``on_open`` if it is a valid policy (``"warn"``, ``"raise"``, ``"ignore"``), else ValueError."""
+    if on_open not in ON_OPEN:
+        raise ValueError(f"on_open must be one of {ON_OPEN}, got {on_open!r}")
+    return on_open
+
+
+def check_closed(ws: Workspace, on_open: str = "warn", stacklevel: int = 2) -> Workspace:
+    """Apply the ``on_open`` policy to a traced workspace and return it.
+
+    A trace that does not close (closure test C.14 never met: the boundary was lost, or
+    ``max_points`` ran out) has a polygon that is an open polyline, and its ``area`` (0 for
+    fewer than 3 points) is not the workspace's area. ``"warn"`` (default) issues an
+    `OpenBoundaryWarning`, ``"raise"`` raises `OpenBoundary`, ``"ignore"`` returns the
+    workspace as it is (``info["closed"]`` is False either way) [OWN: Appendix C assumes the
+    trace closes].
+    """
+    if open_policy(on_open) == "ignore" or "n_steps" not in ws.info or ws.info.get("closed"):
+        return ws  # ignored, not a trace (grid, empty), or closed
+    i = ws.info
+    refined = f", refined from {i['refined_from']}" if "refined_from" in i else ""
+    u0 = np.asarray(i.get("interior")).tolist()
+    msg = (f"the chord trace did not close: {i.get('failure') or 'closure test (C.14) not met'} "
+           f"(chord d = {i.get('chord')}{refined}, interior point {u0}); its area {ws.area:.6g} is that "
+           f"of an open polyline of {ws.n_boundary} points, not the workspace's. A shorter chord, or another "
+           f"interior point, usually closes it")
+    if on_open == "raise":
+        raise OpenBoundary(msg)
+    warnings.warn(msg, OpenBoundaryWarning, stacklevel=stacklevel)
+    return ws
 
 
 def chord_boundary(
@@ -44,6 +91,7 @@ def chord_boundary(
     n_refine: int = 15,
     r_max: float | None = None,
     bifurcations: bool = True,
+    on_open: str = "warn",
 ) -> Workspace:
     """Trace a workspace boundary counterclockwise at constant chord length (Appendix C).
 
@@ -91,6 +139,8 @@ def chord_boundary(
     n_refine : trial points per bisection call (non-smooth only).
     r_max : longest ray searched (default 1e4 d).
     bifurcations : locate and insert bifurcation points.
+    on_open : what a trace that does not close does: ``"warn"`` (default), ``"raise"`` or
+        ``"ignore"`` (`check_closed`).
 
     Returns
     -------
@@ -102,6 +152,7 @@ def chord_boundary(
     ------
     InfeasibleInterior : ``interior`` violates a constraint (or, if smooth, sits on one).
     ChordError : no boundary within ``r_max`` along the ray.
+    OpenBoundary : the trace did not close and ``on_open="raise"``.
     """
     t_start = time.perf_counter()
     d = float(chord)
@@ -111,6 +162,7 @@ def chord_boundary(
         raise ValueError(f"tol must be positive, got {tol!r}")
     if n_scan < 8:
         raise ValueError(f"n_scan must be >= 8, got {n_scan}")
+    open_policy(on_open)
     u0 = np.asarray(interior, dtype=float).reshape(-1)
     if u0.shape != (2,) or not np.all(np.isfinite(u0)):
         raise ValueError(f"interior must be a finite point (x, y), got {interior!r}")
@@ -196,7 +248,8 @@ def chord_boundary(
         "n_constraints": ev.m, "reversed": reversed_, "failure": failure,
     }
     bif = np.array(bif_pts) if bif_pts else np.zeros((0, 2))
-    return Workspace(boundary=P, bifurcations=bif, active=A, method="chord", info=info)
+    ws = Workspace(boundary=P, bifurcations=bif, active=A, method="chord", info=info)
+    return check_closed(ws, on_open, stacklevel=3)  # the warning names chord_boundary's caller
 
 
 def _ray_search(ev: Evaluator, u0, s, d, tol, smooth, n_refine, r_max):

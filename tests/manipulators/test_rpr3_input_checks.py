@@ -20,3 +20,15 @@ def test_rpr3_orientations_must_match_the_positions():
         m.inverse_condition(np.zeros((2, 2)), [0.0, 0.1, 0.2])
     np.testing.assert_allclose(m.inverse_condition([[1.0, 1.37], [1.05, 1.42]], [0.0, 0.0]),
                                m.inverse_condition([[1.0, 1.37], [1.05, 1.42]], 0.0))
+
+
+def test_every_planar_robot_names_at_most_five_bad_rows():
+    """The 3-RPR and the cable robots share one pose check (`manipulators._checks`)."""
+    from manipulators import CableRobot
+
+    U = np.full((7, 2), np.nan)
+    with pytest.raises(ValueError, match=r"poses contain NaN or inf at row\(s\) \[0, 1, 2, 3, 4\] \.\.\.: u = \[nan"):
+        RPR3(-1, 0, 1, 2, 1).inverse_condition(U, 0.0)
+    robot = CableRobot([[1, 0.15], [-1, 0.15], [-1, -0.15], [1, -0.15]], [[0.1, 0], [-0.1, 0], [-0.1, 0], [0.1, 0]])
+    with pytest.raises(ValueError, match=r"poses contain NaN or inf at row\(s\) \[0, 1, 2, 3, 4\] \.\.\."):
+        robot.kinematics(U, 0.0)
