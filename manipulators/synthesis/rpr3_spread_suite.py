@@ -54,5 +54,5 @@ SUITE = Suite(
     build=_build,
     solvers=SOLVERS,
     tables="harness.tables.rpr3_spread",
-    figures="",
+    figures="harness.figures.rpr3_spread",
 )

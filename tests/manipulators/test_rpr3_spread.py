@@ -76,3 +76,19 @@ def test_table_counts_enclosed_ends_against_the_stored_optima():
     assert plus["enclosed, f* >= exact local min - 0.01"] == "2 of 3"
     assert plus["enclosed, f* >= exact best - 0.01"] == "1 of 3"
     assert frame.loc["dynamic-q", "enclosed"] == "0 of 1"
+
+
+def test_figure_plugin_draws_one_png_with_or_without_a_stored_reference(tmp_path):
+    from harness.figures import thesis_figures
+
+    best = [-1.672693971930773, 0.8863942675247938, 1.4902385741065023, 0.9430834171370769, 1.095396011444928]
+    rows = [("dynamic-q-plus", "d0", -0.4291, best), ("dynamic-q-plus", "d0~1", -0.9, [-0.75, 0.0, 0.75, 1.5, 0.75]),
+            ("dynamic-q", "d0", -0.2, [float("nan")] * 5)]
+    runs = pd.DataFrame([{"suite": "rpr3-spread", "problem": "rpr3-mo-p1", "start": s, "solver": v, "f": f,
+                          "x": json.dumps(x), "nfg": 20, "status": "converged"} for v, s, f, x in rows])
+    (path,) = thesis_figures("rpr3-spread", runs, tmp_path / "rpr3-spread" / "figures")  # no reference.json
+    assert path.name == "fig_5_4s_spread.png" and path.stat().st_size > 10_000
+    (tmp_path / "rpr3-spread" / "reference.json").write_text(json.dumps(
+        {"data": {"exact_optimum": {"mo/P1": {"kinv": 0.4291, "local_kinv": 0.1707}}}}))
+    (again,) = thesis_figures("rpr3-spread", runs, tmp_path / "rpr3-spread" / "figures")
+    assert again == path and path.stat().st_size > 10_000
