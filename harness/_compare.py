@@ -2,7 +2,9 @@
 
 Runs are matched on (suite, case_id, solver, settings_hash), then - for runs whose
 settings changed (a new option, a new default) - on (suite, case_id, solver) where that
-is unique on both sides.  A regression is a run solved in OLD and unsolved in NEW, or a
+is unique on both sides.  A run with command-line options (``dynamic-q[rho=0.5]``) counts
+as a solver of its own, so it is only ever matched with a run of the same options.
+A regression is a run solved in OLD and unsolved in NEW, or a
 run solved in both whose N^fg grew by more than ``nfg_tol`` (default 10%), or, when
 ``rel_error_factor`` is given, whose E^r grew by more than that factor (above 1e-12).  A
 run that timed out in OLD and finished in NEW is "finished in time", neither an
@@ -30,6 +32,7 @@ from problems._catalog import is_suite_name
 
 from ._api import NoResults, load_results
 from ._plan import HarnessArgumentError
+from ._profiles import solver_labels
 from ._store import Store
 from .tables._base import count
 from .tables._campaign import clock_decided, clock_stopped
@@ -37,7 +40,8 @@ from .tables._campaign import clock_decided, clock_stopped
 __all__ = ["compare_dirs", "compare_runs", "format_changes", "save_baseline", "load_counts", "Comparison"]
 
 BASELINE_COLUMNS = ["suite", "problem", "n", "start", "variant", "case_id", "solver", "settings_hash", "status",
-                    "success", "nfg", "nf", "ng", "nc", "nj", "nit", "f", "rel_error", "inf_error", "code_version"]
+                    "success", "nfg", "nf", "ng", "nc", "nj", "nit", "f", "rel_error", "inf_error", "code_version",
+                    "overrides"]
 KEY = ["suite", "case_id", "solver", "settings_hash"]
 
 
@@ -58,8 +62,11 @@ def load_counts(root: str | os.PathLike[str], suite: str) -> pd.DataFrame:
         return load_results(suite, root)
     csv = pathlib.Path(root) / suite / "counts.csv"
     if csv.exists():
-        df = pd.read_csv(csv, keep_default_na=False, na_values=[""], dtype={"variant": str, "settings_hash": str})
+        df = pd.read_csv(csv, keep_default_na=False, na_values=[""], dtype={"variant": str, "settings_hash": str,
+                                                                            "overrides": str})
         df["variant"] = df["variant"].fillna("")
+        # baselines written before the column existed hold runs without command-line options
+        df["overrides"] = df["overrides"].fillna("") if "overrides" in df else ""
         return df
     raise NoResults(f"no runs of suite {suite!r} under {root}")
 
@@ -134,8 +141,9 @@ def _verdict(r: pd.Series, nfg_tol: float, rel_error_factor: float | None) -> st
 def compare_runs(old: pd.DataFrame, new: pd.DataFrame, nfg_tol: float = 0.10,
                  rel_error_factor: float | None = None) -> Comparison:
     cols = ["nfg", "success", "status", "rel_error", "f", "clock"]
-    o = old.assign(clock=clock_stopped(old))[KEY + cols]
-    n = new.assign(clock=clock_stopped(new))[KEY + cols]
+    # a run with command-line options is its own solver (`sqsd[rho=0.1]`): matched and shown as such
+    o = old.assign(clock=clock_stopped(old), solver=solver_labels(old))[KEY + cols]
+    n = new.assign(clock=clock_stopped(new), solver=solver_labels(new))[KEY + cols]
     m = o.merge(n, on=KEY, how="outer", suffixes=("_old", "_new"), indicator=True)
     both = m[m["_merge"] == "both"].drop(columns="_merge")
     lo = m[m["_merge"] == "left_only"]

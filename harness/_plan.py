@@ -22,7 +22,8 @@ from ._codeversion import code_version
 from ._record import _jsonable, settings_hash
 from ._suites import SuiteRef
 
-__all__ = ["RunSpec", "plan_runs", "parse_solver_spec", "overrides_text", "HarnessArgumentError"]
+__all__ = ["RunSpec", "plan_runs", "parse_solver_spec", "split_specs", "name_list", "overrides_text",
+           "HarnessArgumentError"]
 
 class HarnessArgumentError(ValueError):
     """Bad arguments to the harness (unknown names, bad values): CLI exit status 2."""
@@ -82,15 +83,75 @@ def _solver_code(name: str, cls: Any, suite_module: str | None, files: tuple[str
     return code_version(mods, tuple(extra))
 
 
+def split_specs(s: str) -> list[str]:
+    """Split on commas outside brackets: ``"sqsd[rho=1,eps_g=1e-6],sd"`` -> two specs."""
+    out, depth, cur = [], 0, ""
+    for ch in s:
+        depth += ch == "["
+        depth -= ch == "]"
+        if ch == "," and depth == 0:
+            out.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    return [x.strip() for x in out + [cur] if x.strip()]
+
+
+def name_list(value: Any, what: str) -> list[str] | None:
+    """``solvers`` / ``problems`` as given to the harness: None (the suite's default), a list
+    of names, or one comma-separated string (as on the command line). An explicit empty
+    list or string is an error: it would otherwise mean "everything"."""
+    if value is None:
+        return None
+    if isinstance(value, str):
+        names = split_specs(value)
+    elif isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
+        names = [v.strip() for v in value]
+    else:
+        raise HarnessArgumentError(f"{what} must be a list of ids or one comma-separated string, got {value!r}")
+    if not names or not all(names):
+        raise HarnessArgumentError(f"no {what} given ({value!r}); leave {what} out for the suite's default")
+    return names
+
+
 def parse_solver_spec(spec: str) -> tuple[str, dict[str, Any]]:
     """``"sqsd[rho=0.5]"`` -> ("sqsd", {"rho": 0.5}); the options override the case's.
 
-    The syntax is the registry's (`solvers.parse_spec`); errors become argument errors.
+    The syntax is the registry's (`solvers.parse_spec`); errors become argument errors, and
+    so does an option given twice (the registry would keep the last one silently).
     """
     try:
-        return parse_spec(spec)
+        name, opts = parse_spec(spec)
     except ValueError as exc:
         raise HarnessArgumentError(str(exc)) from None
+    inner = spec[spec.index("[") + 1:spec.rindex("]")] if "[" in spec and "]" in spec else ""
+    keys = [item.split("=", 1)[0].strip() for item in inner.split(",") if "=" in item]
+    twice = sorted({k for k in keys if keys.count(k) > 1})
+    if twice:
+        raise HarnessArgumentError(f"option(s) {', '.join(twice)} given more than once in {spec!r}")
+    return name, opts
+
+
+def _annotation(cls: Any, option: str) -> str:
+    for f in dataclasses.fields(cls) if dataclasses.is_dataclass(cls) else ():
+        if f.name == option:
+            t = f.type if isinstance(f.type, str) else getattr(f.type, "__name__", str(f.type))
+            return "|".join(p.strip() for p in t.split("|") if p.strip() != "None")
+    return ""
+
+
+def normalized_options(cls: Any, opts: dict[str, Any]) -> dict[str, Any]:
+    """Command-line option values in their option's type: ``max_iter=1e2`` -> 100 (an int
+    option given as a float crashed inside the solver), ``rho=2`` -> 2.0, so one setting
+    written two ways is one run (its settings hash and stored identity)."""
+    out = dict(opts)
+    for k, v in opts.items():
+        kind = _annotation(cls, k)
+        if kind == "int" and isinstance(v, float) and v.is_integer():
+            out[k] = int(v)
+        elif kind == "float" and isinstance(v, int) and not isinstance(v, bool):
+            out[k] = float(v)
+    return out
 
 
 def select_cases(suite: Suite, problems: list[str] | None) -> list[Case]:
@@ -121,6 +182,13 @@ def plan_runs(ref: SuiteRef, suite: Suite, solver_specs: list[str], problems: li
             raise HarnessArgumentError(str(exc)) from None
         except Exception as exc:  # noqa: BLE001 - a known solver that fails to import: error rows
             unavailable[name] = f"solver {name} unavailable: {type(exc).__name__}: {exc}"
+    parsed = [(name, normalized_options(classes[name], over) if name in classes else over) for name, over in parsed]
+    seen: dict[tuple[str, str], str] = {}
+    for (name, over), spec_str in zip(parsed, solver_specs):
+        first = seen.setdefault((name, overrides_text(over)), spec_str)
+        if first is not spec_str:
+            raise HarnessArgumentError(f"solver {spec_str!r} is given twice (as {first!r}): the same solver with the "
+                                       "same options is one run per case")
     for (name, over), spec_str in zip(parsed, solver_specs):  # the user's options: checked before any work
         if over and name in classes:
             try:

@@ -8,8 +8,10 @@ whatever the solvers do is recorded as rows and never stops the suite (docs/harn
 from __future__ import annotations
 
 import dataclasses
+import numbers
 import os
 import pathlib
+import re
 import sys
 import time
 from collections.abc import Iterator, Sequence
@@ -21,11 +23,11 @@ from problems import UnknownSuite
 
 from . import _manifest
 from ._history import thin_history
-from ._plan import HarnessArgumentError, RunSpec, plan_runs
+from ._plan import HarnessArgumentError, RunSpec, name_list, plan_runs
 from ._pool import LocalPool
 from ._progress import Progress
 from ._store import Store, retry_keys
-from ._suites import SuiteRef, import_modules, ref_for
+from ._suites import SolverModuleError, SuiteRef, import_modules, ref_for
 
 __all__ = ["run_suite", "RunSummary", "resolve_suite", "default_timeout"]
 
@@ -169,14 +171,33 @@ def plan_table(specs: list[RunSpec], todo: list[RunSpec], store: Store) -> pd.Da
                      "to run": len(pending), "replace a stored row": len(stale),
                      "estimated run time [s]": round(float(est), 1)})
     table = pd.DataFrame(rows)
-    total = {"solver": "all", **{c: table[c].sum() for c in table.columns if c != "solver"}}
+    # an estimate unknown for one solver (no stored wall times) leaves the total unknown, not 0
+    total = {"solver": "all", **{c: table[c].sum(skipna=c != "estimated run time [s]")
+                                 for c in table.columns if c != "solver"}}
     return pd.concat([table, pd.DataFrame([total])], ignore_index=True)
+
+
+def _import_solver_modules(modules: Sequence[str]) -> None:
+    try:
+        import_modules(tuple(modules))
+    except SolverModuleError as exc:  # bad input: exit 2, naming the module
+        raise HarnessArgumentError(str(exc)) from None
+
+
+def _whole(v: Any) -> bool:
+    return isinstance(v, numbers.Integral) and not isinstance(v, bool)
+
+
+def _check_timeout(timeout: Any) -> None:
+    if isinstance(timeout, bool) or not isinstance(timeout, numbers.Real) or not (timeout >= 0):  # NaN too
+        raise HarnessArgumentError(f"--timeout must be a number of seconds >= 0 (0 or inf: no limit), got {timeout!r}")
 
 
 def _plan(suite: str | None, suite_file: str | os.PathLike[str] | None, solvers: Sequence[str] | None,
           problems: Sequence[str] | None, select: str | None, timeout: float,
           modules: Sequence[str]) -> tuple[SuiteRef, list[RunSpec]]:
     """The suite and every run it plans (keys computed), as `run_suite` would run them."""
+    solvers, problems = name_list(solvers, "solvers"), name_list(problems, "problems")
     ref = resolve_suite(suite, suite_file)
     s = select_suite(ref.load(), select)
     solver_specs = list(solvers) if solvers else list(s.solvers)
@@ -206,8 +227,9 @@ def plan_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] |
     """What `run_suite` with the same arguments would do, per solver (`plan_table`); runs nothing."""
     if timeout is None:
         timeout = default_timeout(suite, suite_file)
+    _check_timeout(timeout)
     if modules:
-        import_modules(tuple(modules))
+        _import_solver_modules(modules)
     ref, specs = _plan(suite, suite_file, solvers, problems, select, timeout, modules)
     store = Store(out, ref.name)
     todo = _todo(specs, store, timeout, fresh, retry_failed)[0]
@@ -220,8 +242,10 @@ def plan_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] |
 
 def prune_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] | None = None,
                 solvers: Sequence[str] | None = None, select: str | None = None,
-                out: str | os.PathLike[str] = "results", modules: Sequence[str] = ()) -> dict[str, int]:
-    """Remove the stored rows a run of the suite would not produce now; rows removed per solver.
+                out: str | os.PathLike[str] = "results", modules: Sequence[str] = (),
+                dry_run: bool = False) -> dict[str, int]:
+    """Remove the stored rows a run of the suite would not produce now; rows removed per solver
+    (``dry_run``: the rows that would be removed; nothing is changed).
 
     Those are rows from older code or settings (their key is no longer planned) and rows of
     cases or solvers outside the selection.  After a change of a solver or of a campaign's
@@ -229,12 +253,12 @@ def prune_suite(suite: str | None = None, *, suite_file: str | os.PathLike[str] 
     in ``runs.prev.parquet`` (`harness repair` restores it); the committed store is in git.
     """
     if modules:
-        import_modules(tuple(modules))
+        _import_solver_modules(modules)
     ref, specs = _plan(suite, suite_file, solvers, None, select, 0.0, modules)
     store = Store(out, ref.name)
     if not store.exists():
         return {}
-    return store.keep_only({sp.run_key for sp in specs})
+    return store.keep_only({sp.run_key for sp in specs}, dry_run=dry_run)
 
 
 def run_suite(
@@ -286,17 +310,20 @@ def run_suite(
     t0 = time.perf_counter()
     started = _manifest.now()
     if modules:
-        import_modules(tuple(modules))
+        _import_solver_modules(modules)
     if timeout is None:
         timeout = default_timeout(suite, suite_file)
-    if not (timeout >= 0):  # also catches NaN
-        raise HarnessArgumentError(f"--timeout must be a number of seconds >= 0 (0 or inf: no limit), got {timeout}")
-    if history_points is not None and history_points < 2:
-        raise HarnessArgumentError(f"--history-points must be >= 2, got {history_points}")
-    if jobs is not None and jobs < 1:
-        raise HarnessArgumentError(f"--jobs must be >= 1, got {jobs}")
+    _check_timeout(timeout)
+    if history_points is not None and not (_whole(history_points) and history_points >= 2):
+        raise HarnessArgumentError(f"--history-points must be a whole number >= 2, got {history_points!r}")
+    if jobs is not None and not (_whole(jobs) and jobs >= 1):
+        raise HarnessArgumentError(f"--jobs must be a whole number >= 1, got {jobs!r}")
     if executor == "dask" and not scheduler:
         raise HarnessArgumentError("--executor dask needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
+    if executor == "dask" and str(scheduler).startswith("local") and not re.fullmatch(r"local(:[1-9][0-9]*)?",
+                                                                                    str(scheduler)):
+        raise HarnessArgumentError(f"--scheduler {scheduler!r}: an in-process cluster is 'local' or 'local:N' with N "
+                                   "workers >= 1; a running scheduler is an address such as tcp://127.0.0.1:8786")
     ref, specs = _plan(suite, suite_file, solvers, problems, select, timeout, modules)
     store = Store(out, ref.name)
     _check_writable(store.root)

@@ -18,6 +18,7 @@ import math
 import os
 import pathlib
 import re
+import signal
 import subprocess
 import tempfile
 import time
@@ -51,9 +52,15 @@ COLUMNS = ROW_COLUMNS + EXTRA_COLUMNS + STORE_COLUMNS
 IDENTITY = ["case_id", "solver", "overrides"]
 FLOAT_COLUMNS = ["f", "f_ref", "rel_error", "inf_error", "max_violation", "wall_time_s", "time_in_evals_s",
                  "timeout_s"]
-#: messages of runs that failed for reasons outside the solver: the worker was killed by a signal
-#: (e.g. the kernel's OOM killer), lost with its Dask worker, or ran out of memory
-INFRASTRUCTURE = ("worker process died", "dask task failed", "MemoryError")
+#: messages of runs that failed for reasons outside the solver: the worker was killed from outside
+#: (e.g. SIGKILL from the kernel's OOM killer) or died while starting, was lost with its Dask
+#: worker, or the run ran out of memory (MemoryError)
+INFRASTRUCTURE = re.compile(r"^(worker process died while starting|dask task failed|MemoryError\b)")
+_DIED = re.compile(r"^worker process died \(exit code (-?\d+|None)\)")
+#: signals a run's own code raises (segmentation fault, abort, bus error, floating-point trap,
+#: illegal instruction): deterministic, so a result of the solver or problem, not retried
+_CRASH_SIGNALS = {int(getattr(signal, n)) for n in ("SIGSEGV", "SIGABRT", "SIGBUS", "SIGFPE", "SIGILL")
+                  if hasattr(signal, n)}
 
 
 def failure_kind(status: str, message: str) -> str:
@@ -66,7 +73,14 @@ def failure_kind(status: str, message: str) -> str:
         return "timeout"
     if status != "error":
         return ""
-    return "infrastructure" if any(m in message for m in INFRASTRUCTURE) else "solver"
+    message = str(message)
+    if INFRASTRUCTURE.match(message):
+        return "infrastructure"
+    died = _DIED.match(message)
+    if died:  # killed by a signal from outside: infrastructure; exited or crashed by itself: the run's own
+        code = died.group(1)
+        return "infrastructure" if code == "None" or (int(code) < 0 and -int(code) not in _CRASH_SIGNALS) else "solver"
+    return "solver"
 
 
 def _stored_limit(row: pd.Series) -> float:
@@ -225,15 +239,16 @@ class Store:
             with contextlib.suppress(OSError):
                 p.unlink()
 
-    def keep_only(self, keys: set[str]) -> dict[str, int]:
+    def keep_only(self, keys: set[str], dry_run: bool = False) -> dict[str, int]:
         """Keep the rows whose run key is in ``keys`` (pending run files merged); rows removed
-        per solver.  Atomic like `consolidate`, which keeps the replaced generation."""
+        per solver (``dry_run``: that would be removed; nothing is written).  Atomic like
+        `consolidate`, which keeps the replaced generation."""
         with _locked(self.root / ".lock"):
             files = self._pending_files()
             df = self._merged(files)
             drop = ~df["run_key"].astype(str).isin(keys)
             removed = {str(k): int(v) for k, v in df.loc[drop, "solver"].value_counts().items()}
-            if not drop.any() and not files:
+            if dry_run or (not drop.any() and not files):
                 return removed
             self._replace(df[~drop], files)
             return removed

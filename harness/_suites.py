@@ -47,17 +47,20 @@ class SuiteRef:
         return load_suite(self)
 
 
-def _file_module(path: str) -> ModuleType:
-    """Import a suite file by path once per process (workers re-import it here)."""
+def _file_module(path: str, what: str = "suite file") -> ModuleType:
+    """Import a suite file (or a ``--solver-module`` file: ``what``) by path once per process
+    (workers re-import it here)."""
     if path in _FILE_MODULES:
         return _FILE_MODULES[path]
     p = pathlib.Path(path)
+    if p.is_dir():
+        raise FileNotFoundError(f"{what} {path} is a directory, not a .py file")
     if not p.is_file():
-        raise FileNotFoundError(f"suite file {path} does not exist")
+        raise FileNotFoundError(f"{what} {path} does not exist")
     modname = "_harness_suitefile_" + hashlib.sha1(str(p).encode()).hexdigest()[:10]
     spec = importlib.util.spec_from_file_location(modname, p)
     if spec is None or spec.loader is None:
-        raise ImportError(f"cannot import suite file {path}")
+        raise ImportError(f"cannot import {what} {path}")
     module = importlib.util.module_from_spec(spec)
     sys.modules[modname] = module  # dataclasses and pickling look modules up here
     try:
@@ -66,7 +69,7 @@ def _file_module(path: str) -> ModuleType:
         del sys.modules[modname]
         tb = [f for f in traceback.extract_tb(exc.__traceback__) if f.filename == str(p)]
         where = f" (line {tb[-1].lineno})" if tb else ""
-        raise SuiteFileError(f"suite file {path} raised {type(exc).__name__} at import{where}: {exc}") from None
+        raise SuiteFileError(f"{what} {path} raised {type(exc).__name__} at import{where}: {exc}") from None
     _FILE_MODULES[path] = module
     return module
 
@@ -126,10 +129,28 @@ def ref_for(name: str | None = None, file: str | os.PathLike[str] | None = None)
     return SuiteRef(name=name)
 
 
+class SolverModuleError(SuiteFileError):
+    """A ``--solver-module`` could not be found or imported: a bad-input error, in one line."""
+
+
 def import_modules(modules: tuple[str, ...]) -> None:
-    """Import extra modules (e.g. ones registering solvers) by name or by file path."""
+    """Import extra modules (e.g. ones registering solvers) by name or by file path.
+
+    Raises `SolverModuleError` naming the module when it is missing or raises at import.
+    """
     for m in modules:
-        if m.endswith(".py") or "/" in m:
-            _file_module(str(pathlib.Path(m).resolve()))
-        else:
-            importlib.import_module(m)
+        if not isinstance(m, str) or not m.strip():
+            raise SolverModuleError(f"--solver-module needs a module name or a .py file, got {m!r}")
+        try:
+            if m.endswith(".py") or "/" in m:
+                _file_module(str(pathlib.Path(m).resolve()), what="solver module")
+            else:
+                importlib.import_module(m)
+        except SuiteFileError as exc:
+            raise SolverModuleError(str(exc)) from None
+        except FileNotFoundError as exc:
+            raise SolverModuleError(str(exc)) from None
+        except ImportError as exc:
+            raise SolverModuleError(f"solver module {m} cannot be imported: {exc}") from None
+        except Exception as exc:  # noqa: BLE001 - the user's module failed: say so, in one line
+            raise SolverModuleError(f"solver module {m} raised {type(exc).__name__} at import: {exc}") from None

@@ -17,28 +17,35 @@ import pathlib
 import sys
 from collections.abc import Sequence
 
-from ._plan import HarnessArgumentError
+from ._plan import HarnessArgumentError, name_list
 
 __all__ = ["main"]
 EXIT_OK, EXIT_REGRESSIONS, EXIT_BAD_INPUT, EXIT_HARNESS_FAILURE, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 
 
-def _csv(s: str | None) -> list[str] | None:
-    return [x.strip() for x in _split_specs(s) if x.strip()] if s else None
+def _csv(s: str | None, what: str) -> list[str] | None:
+    """A comma-separated option (brackets kept together); an empty one is refused, not "all"."""
+    return None if s is None else name_list(s, what)
 
 
-def _split_specs(s: str) -> list[str]:
-    """Split on commas outside brackets: ``sqsd[rho=1,eps_g=1e-6],sd``."""
-    out, depth, cur = [], 0, ""
-    for ch in s:
-        depth += ch == "["
-        depth -= ch == "]"
-        if ch == "," and depth == 0:
-            out.append(cur)
-            cur = ""
-        else:
-            cur += ch
-    return out + [cur]
+def _path_arg(s: str) -> str:
+    """A directory or file argument: an empty one would silently mean the current directory."""
+    if not s.strip():
+        raise argparse.ArgumentTypeError("needs a path, got an empty string")
+    return s
+
+
+def _writable_target(path: str, what: str) -> None:
+    """Refuse, as bad input, a target whose parent is missing or is a file (before any work)."""
+    p = pathlib.Path(path)
+    parent = p.parent if p.suffix else p
+    for q in [parent, *parent.parents]:
+        if q.exists():
+            if not q.is_dir():
+                raise HarnessArgumentError(f"{what} {path}: {q} is a file, not a directory")
+            break
+    if p.suffix and not p.parent.is_dir():
+        raise HarnessArgumentError(f"{what} {path}: directory {p.parent} does not exist")
 
 
 def _suite_args(p: argparse.ArgumentParser, required: bool = True) -> None:
@@ -62,7 +69,7 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--problems", help="comma-separated problem ids or case ids (default: all)")
     r.add_argument("--select", help="pick problems by their properties, e.g. \"type=u,n<=100\" (suites cutest, "
                                     "hs-all; docs/cutest.md)")
-    r.add_argument("--out", default="results", help="results directory (default: results/)")
+    r.add_argument("--out", default="results", type=_path_arg, help="results directory (default: results/)")
     r.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
     r.add_argument("--timeout", type=float, default=None,
                    help="per-run wall-clock limit, s (default 10 for the campaigns cutest and hs-all, 600 otherwise; "
@@ -87,7 +94,7 @@ def _parser() -> argparse.ArgumentParser:
     t = sub.add_parser("table", help="render a suite's tables from stored results")
     _suite_args(t)
     t.add_argument("--format", choices=["md", "csv", "latex"], default="md", help="format printed (all are written)")
-    t.add_argument("--out", default="results")
+    t.add_argument("--out", default="results", type=_path_arg)
 
     ls = sub.add_parser("list", help="list solvers, suites or a suite's problems")
     ls.add_argument("what", choices=["solvers", "suites", "problems"])
@@ -99,11 +106,11 @@ def _parser() -> argparse.ArgumentParser:
     _suite_args(pl)
     pl.add_argument("--kind", required=True, choices=["profile", "data-profile", "history", "thesis", "log-ratio"])
     pl.add_argument("--problem", help="problem id or case id (history plots; default: every case)")
-    pl.add_argument("--out", default="results")
+    pl.add_argument("--out", default="results", type=_path_arg)
     pl.add_argument("--quiet", action="store_true", help="no progress lines")
 
     rp = sub.add_parser("report", help="static HTML report of every suite under --out")
-    rp.add_argument("--out", default="results")
+    rp.add_argument("--out", default="results", type=_path_arg)
     rp.add_argument("--embed", action="store_true",
                     help="inline the figures: one self-contained HTML file (to mail or attach to a CI run)")
     rp.add_argument("--quiet", action="store_true", help="no progress lines")
@@ -111,14 +118,15 @@ def _parser() -> argparse.ArgumentParser:
     rr = sub.add_parser("repair", help="make a suite's unreadable runs.parquet readable again "
                                         "(restores the previous generation, merges pending runs)")
     rr.add_argument("--suite", required=True)
-    rr.add_argument("--out", default="results")
+    rr.add_argument("--out", default="results", type=_path_arg)
 
     pr = sub.add_parser("prune", help="remove stored rows a run would not produce now (older code or "
                                       "settings, cases or solvers outside the selection)")
-    pr.add_argument("--suite", required=True)
+    _suite_args(pr)
+    pr.add_argument("--dry-run", action="store_true", help="list what would be removed; change nothing")
     pr.add_argument("--select", help="the selection the store should hold (suites cutest, hs-all)")
     pr.add_argument("--solvers", help="comma-separated solver ids to keep (default: the suite's)")
-    pr.add_argument("--out", default="results")
+    pr.add_argument("--out", default="results", type=_path_arg)
 
     cp = sub.add_parser("compare", help="per-run changes between two result directories")
     cp.add_argument("old")
@@ -132,14 +140,15 @@ def _parser() -> argparse.ArgumentParser:
     ex = sub.add_parser("export", help="write a suite's runs for OptiProfiler: an HDF5 archive, or an experiment "
                         "directory its benchmark(load=...) draws profiles from (docs/cutest.md)")
     ex.add_argument("--suite", required=True)
-    ex.add_argument("--out", default="results")
-    ex.add_argument("--to", required=True, help="a path ending in .h5: the archive alone; otherwise a directory "
+    ex.add_argument("--out", default="results", type=_path_arg)
+    ex.add_argument("--to", required=True, type=_path_arg,
+                    help="a path ending in .h5: the archive alone; otherwise a directory "
                     "in OptiProfiler's experiment layout")
 
     rf = sub.add_parser("reference", help="compute and store what a suite's tables read from exact models "
                         "(rpr2, rpr3) or its best-known points (cutest, hs-all; docs/harness.md)")
     rf.add_argument("--suite", required=True)
-    rf.add_argument("--out", default="results")
+    rf.add_argument("--out", default="results", type=_path_arg)
     rf.add_argument("--fresh", action="store_true", help="recompute every entry, not only the missing ones "
                     "(best-known points: rebuild from the stored runs alone)")
     rf.add_argument("--verify", action="store_true", help="cutest, hs-all: re-evaluate every stored best-known "
@@ -147,8 +156,8 @@ def _parser() -> argparse.ArgumentParser:
 
     b = sub.add_parser("baseline", help="save the deterministic counts of stored runs as a baseline")
     b.add_argument("--suite", required=True)
-    b.add_argument("--out", default="results")
-    b.add_argument("--to", default=os.path.join("results", "baseline"))
+    b.add_argument("--out", default="results", type=_path_arg)
+    b.add_argument("--to", default=os.path.join("results", "baseline"), type=_path_arg)
     b.add_argument("--solvers", default=None,
                    help="comma-separated: replace only these solvers' rows, keep the baseline's others")
     return ap
@@ -157,18 +166,18 @@ def _parser() -> argparse.ArgumentParser:
 def _cmd_run(a: argparse.Namespace) -> int:
     from ._runner import plan_suite, run_suite
 
+    solvers, problems = _csv(a.solvers, "--solvers"), _csv(a.problems, "--problems")
     if a.dry_run:
-        plan = plan_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
-                          select=a.select, out=a.out, timeout=a.timeout, fresh=a.fresh,
+        plan = plan_suite(a.suite, suite_file=a.suite_file, solvers=solvers, problems=problems, select=a.select,
+                          out=a.out, timeout=a.timeout, fresh=a.fresh,
                           retry_failed=a.retry_failed, modules=a.modules)
         print(plan.to_string(index=False))
         print("\nestimated run time: stored wall times of the same runs where there are any, else the solver's "
-              "mean; divide the sum by the workers (--jobs) for the wall time. Nothing was run.")
+              "mean (NaN: none stored); divide the sum by the workers (--jobs) for the wall time. Nothing was run.")
         if plan.attrs.get("note"):
             print(plan.attrs["note"])
         return 0
-    summary = run_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers), problems=_csv(a.problems),
-                        select=a.select,
+    summary = run_suite(a.suite, suite_file=a.suite_file, solvers=solvers, problems=problems, select=a.select,
                         out=a.out, jobs=a.jobs, timeout=a.timeout, history_points=a.history_points, fresh=a.fresh,
                         retry_failed=a.retry_failed,
                         executor=a.executor,
@@ -261,8 +270,14 @@ def _cmd_plot(a: argparse.Namespace) -> int:
 
 
 def _cmd_report(a: argparse.Namespace) -> int:
-    from ._report import write_report
+    from ._report import suites_under, write_report
 
+    out = pathlib.Path(a.out)
+    if out.exists() and not out.is_dir():
+        raise HarnessArgumentError(f"--out {out} is a file, not a results directory")
+    if out.is_dir() and not suites_under(out):
+        raise HarnessArgumentError(f"no stored results under {out}; run a suite first "
+                                   f"(python -m harness run --suite hs --out {out})")
     print(write_report(a.out, embed=a.embed, progress=None if a.quiet else sys.stderr))
     return 0
 
@@ -270,11 +285,16 @@ def _cmd_report(a: argparse.Namespace) -> int:
 def _cmd_prune(a: argparse.Namespace) -> int:
     from ._runner import prune_suite
 
-    removed = prune_suite(a.suite, solvers=_csv(a.solvers), select=a.select, out=a.out)
+    removed = prune_suite(a.suite, suite_file=a.suite_file, solvers=_csv(a.solvers, "--solvers"), select=a.select,
+                          out=a.out, dry_run=a.dry_run)
     total = sum(removed.values())
     detail = ", ".join(f"{k} {v}" for k, v in sorted(removed.items()))
-    print(f"{a.suite}: removed {total} stored rows" + (f" ({detail})" if detail else "")
-          + "; the previous generation is runs.prev.parquet")
+    name = a.suite or a.suite_file
+    if a.dry_run:
+        print(f"{name}: would remove {total} stored rows" + (f" ({detail})" if detail else "") + "; nothing changed")
+    else:
+        print(f"{name}: removed {total} stored rows" + (f" ({detail})" if detail else "")
+              + "; the previous generation is runs.prev.parquet")
     return 0
 
 
@@ -301,7 +321,9 @@ def _cmd_export(a: argparse.Namespace) -> int:
     from ._api import load_results
     from ._optiprofiler import export_optiprofiler
 
-    print(export_optiprofiler(load_results(a.suite, a.out), a.to, plib=a.suite))
+    runs = load_results(a.suite, a.out)
+    _writable_target(a.to, "--to")
+    print(export_optiprofiler(runs, a.to, plib=a.suite))
     return EXIT_OK
 
 
@@ -314,9 +336,14 @@ def _cmd_reference(a: argparse.Namespace) -> int:
                                    f"{', '.join(REFERENCE_MODULES)}")
     if a.verify:
         return _verify_best_known(a)
+    from . import _best_known
+
     try:
         runs = load_results(a.suite, a.out)
     except NoResults:
+        if REFERENCE_MODULES[a.suite] == _best_known.__name__:  # made from the runs alone
+            raise HarnessArgumentError(f"no stored runs of {a.suite} under {a.out}: its best-known points come "
+                                       f"from them (python -m harness run --suite {a.suite} --out {a.out})") from None
         runs = None  # the run-independent part (exact optima) is still useful
     print(update_reference(a.out, a.suite, runs, fresh=a.fresh))
     return 0
@@ -332,6 +359,9 @@ def _verify_best_known(a: argparse.Namespace) -> int:
         raise HarnessArgumentError(f"--verify checks best-known points; suite {a.suite!r} stores an exact-model "
                                    "analysis instead")
     stored = load_reference(a.out, a.suite)
+    if not stored.get("best_known"):
+        raise HarnessArgumentError(f"no stored best-known points of {a.suite} under {a.out} to verify "
+                                   f"(python -m harness reference --suite {a.suite} --out {a.out})")
     report = _best_known.verify(load_suite(resolve_suite(a.suite)), stored)
     bad = report[~report["ok"]]
     for r in bad.itertuples():
@@ -344,7 +374,8 @@ def _verify_best_known(a: argparse.Namespace) -> int:
 def _cmd_baseline(a: argparse.Namespace) -> int:
     from ._compare import save_baseline
 
-    print(save_baseline(a.suite, a.out, a.to, _csv(a.solvers)))
+    _writable_target(a.to, "--to")
+    print(save_baseline(a.suite, a.out, a.to, _csv(a.solvers, "--solvers")))
     return 0
 
 

@@ -32,6 +32,16 @@ def test_failure_kinds():
     assert failure_kind("converged", "") == ""
 
 
+
+def test_a_run_that_exits_or_crashes_by_itself_is_its_own_result_not_retried():
+    # exit(3) from the problem, a segmentation fault in a C solver: deterministic, so stored as results
+    assert failure_kind("error", "worker process died (exit code 3)") == "solver"
+    assert failure_kind("error", "worker process died (exit code -11)") == "solver"
+    assert failure_kind("error", "worker process died while starting") == "infrastructure"
+    # only a message that *is* a MemoryError counts, not one that mentions it
+    assert failure_kind("error", "ValueError: not a MemoryError") == "solver"
+
+
 def test_killed_worker_is_rerun(tmp_path):
     spec = f"mod-dies-once[marker={tmp_path / 'killed'}]"
     _run(tmp_path, [spec])
