@@ -17,6 +17,7 @@ import time
 from collections.abc import Iterator, Sequence
 from typing import Any, TextIO
 
+import numpy as np
 import pandas as pd
 
 from problems import UnknownSuite
@@ -189,7 +190,8 @@ def _whole(v: Any) -> bool:
 
 
 def _check_timeout(timeout: Any) -> None:
-    if isinstance(timeout, bool) or not isinstance(timeout, numbers.Real) or not (timeout >= 0):  # NaN too
+    if isinstance(timeout, bool) or not isinstance(timeout, (int, float, np.integer, np.floating)) \
+            or not (timeout >= 0):  # NaN too
         raise HarnessArgumentError(f"--timeout must be a number of seconds >= 0 (0 or inf: no limit), got {timeout!r}")
 
 
