@@ -26,8 +26,10 @@ def _suite_name(suite: str | SuiteRef) -> str:
 def load_results(suite: str | SuiteRef, out: str | os.PathLike[str] = "results") -> pd.DataFrame:
     """The stored runs of ``suite`` under ``out`` as a DataFrame (one row per run).
 
-    Columns: `harness._record.ROW_COLUMNS` plus run_key, code_version, finished_at.
-    Counts are nullable integers (unknown for runs that timed out).
+    Columns: `harness._record.ROW_COLUMNS` plus overrides (the command-line options of the
+    run, canonical JSON, "" for none), run_key, code_version, finished_at and timeout_s (the
+    wall-clock limit the run ran under; 0 = none). Counts are nullable integers (unknown for
+    runs that timed out).
     """
     name = _suite_name(suite)
     store = Store(out, name)
