@@ -330,6 +330,7 @@ def run_suite(
     store = Store(out, ref.name)
     _check_writable(store.root)
     todo, again = _todo(specs, store, timeout, fresh, retry_failed)
+    existed = store.exists()
     by_key = {sp.run_key: sp for sp in todo}
     summary = RunSummary(ref.name, len(specs), len(specs) - len(todo), 0, 0, 0, store.parquet, 0.0,
                          retried=sum(sp.run_key in again for sp in todo))
@@ -359,15 +360,16 @@ def run_suite(
                     last = time.perf_counter()
         finally:
             bar.close()
-            store.consolidate()
             summary.elapsed = time.perf_counter() - t0
-            _manifest.record_session(store.root, {
-                **_manifest.environment(), "suite": ref.name, "suite_file": ref.file, "start": started,
-                "end": _manifest.now(), "argv": list(argv) if argv is not None else sys.argv,
-                "planned": summary.planned, "executed": summary.executed, "skipped": summary.skipped,
-                "failed": summary.failed, "executor": executor, "jobs": jobs, "timeout": timeout,
-                "history_points": history_points,
-                **({"dask_workers": info["workers"]} if "workers" in info else {})})
+            if summary.executed or existed:  # nothing ran (e.g. no Dask scheduler): leave no empty store
+                store.consolidate()
+                _manifest.record_session(store.root, {
+                    **_manifest.environment(), "suite": ref.name, "suite_file": ref.file, "start": started,
+                    "end": _manifest.now(), "argv": list(argv) if argv is not None else sys.argv,
+                    "planned": summary.planned, "executed": summary.executed, "skipped": summary.skipped,
+                    "failed": summary.failed, "executor": executor, "jobs": jobs, "timeout": timeout,
+                    "history_points": history_points,
+                    **({"dask_workers": info["workers"]} if "workers" in info else {})})
     elif not store.parquet.exists() and store.exists():
         store.consolidate()
     summary.elapsed = time.perf_counter() - t0

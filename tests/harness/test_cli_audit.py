@@ -160,3 +160,16 @@ def test_prune_dry_run_changes_nothing(tmp_path, capsys):
     assert main(["prune", "--suite", "hs", "--solvers", "scipy-slsqp", "--out", str(tmp_path), "--dry-run"]) == 0
     assert "would remove 1 stored rows (sqsd 1); nothing changed" in capsys.readouterr().out
     assert len(harness.load_results("hs", tmp_path)) == before
+
+
+def test_a_run_that_never_starts_leaves_no_empty_store(tmp_path, monkeypatch):
+    import harness._runner as runner
+
+    def no_scheduler(*args, **kwargs):
+        raise OSError("Timed out trying to connect to tcp://127.0.0.1:1 after 30 s")
+        yield  # a generator, as the real executor
+
+    monkeypatch.setattr(runner, "_execute", no_scheduler)
+    with pytest.raises(OSError, match="Timed out"):
+        harness.run_suite(suite_file=TINY, solvers=["sqsd"], out=tmp_path, progress=None)
+    assert not Store(tmp_path, "tiny").exists() and not (tmp_path / "tiny" / "manifest.json").exists()
