@@ -17,6 +17,7 @@ from typing import Any
 from problems import Case, Suite
 from problems._catalog import REGISTRY as SUITE_REGISTRY
 from solvers import get_solver_class, make_solver, parse_spec
+from solvers._base import _type_ok
 
 from ._codeversion import code_version
 from ._record import _jsonable, settings_hash
@@ -132,24 +133,17 @@ def parse_solver_spec(spec: str) -> tuple[str, dict[str, Any]]:
     return name, opts
 
 
-def _annotation(cls: Any, option: str) -> str:
-    for f in dataclasses.fields(cls) if dataclasses.is_dataclass(cls) else ():
-        if f.name == option:
-            t = f.type if isinstance(f.type, str) else getattr(f.type, "__name__", str(f.type))
-            return "|".join(p.strip() for p in t.split("|") if p.strip() != "None")
-    return ""
-
-
 def normalized_options(cls: Any, opts: dict[str, Any]) -> dict[str, Any]:
     """Command-line option values in their option's type: ``max_iter=1e2`` -> 100 (an int
     option given as a float crashed inside the solver), ``rho=2`` -> 2.0, so one setting
     written two ways is one run (its settings hash and stored identity)."""
+    types = {f.name: f.type for f in dataclasses.fields(cls)} if dataclasses.is_dataclass(cls) else {}
     out = dict(opts)
     for k, v in opts.items():
-        kind = _annotation(cls, k)
-        if kind == "int" and isinstance(v, float) and v.is_integer():
+        ok, kind = _type_ok(types.get(k, ""), v)  # the annotation reading the solvers' own check uses
+        if ok and kind == "an integer" and isinstance(v, float):
             out[k] = int(v)
-        elif kind == "float" and isinstance(v, int) and not isinstance(v, bool):
+        elif ok and kind == "a number" and isinstance(v, int):
             out[k] = float(v)
     return out
 
@@ -183,12 +177,12 @@ def plan_runs(ref: SuiteRef, suite: Suite, solver_specs: list[str], problems: li
         except Exception as exc:  # noqa: BLE001 - a known solver that fails to import: error rows
             unavailable[name] = f"solver {name} unavailable: {type(exc).__name__}: {exc}"
     parsed = [(name, normalized_options(classes[name], over) if name in classes else over) for name, over in parsed]
-    seen: dict[tuple[str, str], str] = {}
-    for (name, over), spec_str in zip(parsed, solver_specs):
-        first = seen.setdefault((name, overrides_text(over)), spec_str)
-        if first is not spec_str:
-            raise HarnessArgumentError(f"solver {spec_str!r} is given twice (as {first!r}): the same solver with the "
-                                       "same options is one run per case")
+    seen: dict[tuple[str, str], int] = {}
+    for i, ((name, over), spec_str) in enumerate(zip(parsed, solver_specs)):
+        first = seen.setdefault((name, overrides_text(over)), i)
+        if first != i:
+            raise HarnessArgumentError(f"solver {spec_str!r} is given twice (as {solver_specs[first]!r}): the same "
+                                       "solver with the same options is one run per case")
     for (name, over), spec_str in zip(parsed, solver_specs):  # the user's options: checked before any work
         if over and name in classes:
             try:

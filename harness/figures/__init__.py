@@ -12,7 +12,7 @@ import pathlib
 
 import pandas as pd
 
-__all__ = ["NoFigurePlugin", "thesis_figures"]
+__all__ = ["NoFigurePlugin", "thesis_figures", "finish"]
 
 
 class NoFigurePlugin(LookupError):
@@ -36,3 +36,14 @@ def thesis_figures(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list
     outdir = pathlib.Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     return [pathlib.Path(p) for p in module.figures(runs, outdir)]
+
+
+def finish(fig, title: str, path: pathlib.Path) -> list[pathlib.Path]:
+    """Title, lay out, write (120 dpi) and close a plug-in's figure; returns ``[path]``."""
+    import matplotlib.pyplot as plt
+
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return [pathlib.Path(path)]

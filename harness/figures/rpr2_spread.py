@@ -19,6 +19,7 @@ __all__ = ["figures"]
 def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
     import matplotlib.pyplot as plt
 
+    from harness.figures import finish
     from harness.tables.rpr2 import E_REL, E_TARGET, O_LIMIT
     from harness.tables.rpr2_spread import KINDS, _solver_order, _thesis_f
     from manipulators.synthesis.rpr2_spread_suite import EPS, parse_start
@@ -61,9 +62,5 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         ax.set_title(f"{label} synthesis ({'Tables 4.3-4.6' if kind == 'o' else 'Table 4.7'})")
         ax.legend(fontsize=7)
         ax.grid(alpha=0.3)
-    fig.suptitle(f"{', '.join(solvers)} from SP1-SP4 and from starts within {EPS:g} of them")
-    fig.tight_layout()
-    path = pathlib.Path(outdir) / "fig_4_7s_spread.png"
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return [path]
+    return finish(fig, f"{', '.join(solvers)} from SP1-SP4 and from starts within {EPS:g} of them",
+                  pathlib.Path(outdir) / "fig_4_7s_spread.png")

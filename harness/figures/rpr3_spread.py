@@ -23,6 +23,7 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
     import matplotlib.pyplot as plt
 
     from harness._reference import load_reference
+    from harness.figures import finish
     from harness.tables.rpr2 import _decoded
     from harness.tables.rpr2_spread import _solver_order
     from harness.tables.rpr3 import F_TOL
@@ -73,9 +74,5 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         ax.set_title(f"{kind.upper()} synthesis (Table {'5.4' if kind == 'mo' else '5.5'}s); hollow: W_p not enclosed")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=6)
-    fig.suptitle(f"{', '.join(solvers)} from d0 and from starts within {EPS:g} of it")
-    fig.tight_layout()
-    path = outdir / "fig_5_4s_spread.png"
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return [path]
+    return finish(fig, f"{', '.join(solvers)} from d0 and from starts within {EPS:g} of it",
+                  outdir / "fig_5_4s_spread.png")

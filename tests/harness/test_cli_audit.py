@@ -173,3 +173,9 @@ def test_a_run_that_never_starts_leaves_no_empty_store(tmp_path, monkeypatch):
     with pytest.raises(OSError, match="Timed out"):
         harness.run_suite(suite_file=TINY, solvers=["sqsd"], out=tmp_path, progress=None)
     assert not Store(tmp_path, "tiny").exists() and not (tmp_path / "tiny" / "manifest.json").exists()
+
+
+def test_a_solver_repeated_in_a_python_list_is_refused_too(tmp_path):
+    # equal string literals are one object: the check must compare positions, not identity
+    with pytest.raises(harness.HarnessArgumentError, match="'sqsd' is given twice"):
+        plan_suite("hs", solvers=["sqsd", "sqsd"], problems=["hs002"], out=tmp_path)
