@@ -365,7 +365,11 @@ def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
                  frame=frame, flags=fl,
                  notes=["f = min kappa^-1 over the prescribed boundary (2048 points); g* from (4.16) with the "
                         "triangle scheme; 'enclosed' = exact dW_p <= 1e-4 area(P).",
-                        f"Flagged: Dynamic-Q f* more than {P_TOL} below the thesis's, or P not enclosed."])
+                        f"Flagged: Dynamic-Q f* more than {P_TOL} below the thesis's, or P not enclosed.",
+                        "An end on g = 0 can leave slivers of P outside the exact workspace (the chord's sagitta): "
+                        "the same synthesis in exact form (kappa^-1 >= t at the same 2048 points, leg limits on dP; "
+                        "analytic derivatives), every constrained solver at its defaults: Table 4.9x, suite "
+                        "rpr2-exact (python -m harness run --suite rpr2-exact)."])
 
 
 def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:

@@ -1,10 +1,17 @@
-"""Table 4.7x (suite ``rpr2-exact``): E synthesis (4.14) in exact smooth form, every solver from SP1-SP4.
+"""Tables 4.7x and 4.9x (suite ``rpr2-exact``): E synthesis (4.14) and P synthesis (4.21) in exact
+smooth form, every constrained solver at its defaults.
 
-One row per (start, solver): the end's f* (= dW_c when W_p is enclosed), its constraint
-violation as the harness measured it, the local minimum of the exact problem it reached
-(from the stored multistart, `rpr2_exact_suite.reference`), the end's exact dW_p and, for
-comparison with Table 4.7, the thesis formulation's f and h (chord method, triangle scheme)
-at the same design.  Flagged: an end that is not one of the exact problem's local minima.
+Table 4.7x, one row per (start, solver): the end's f* (= dW_c when W_p is enclosed), its
+constraint violation as the harness measured it, the local minimum of the exact problem it
+reached (from the stored multistart, `rpr2_exact_suite.reference`), the end's exact dW_p and,
+for comparison with Table 4.7, the thesis formulation's f and h (chord method, triangle
+scheme) at the same design.  Flagged: an end that is not one of the exact problem's local
+minima.
+
+Table 4.9x, one row per (P, solver): t* = min kappa^-1 at the end, its violation, whether it
+is the exact problem's best design (stored multistart), the area of P outside the exact
+workspace and, for comparison with Table 4.9, the chord formulation's g (4.16) at the same
+design.  Flagged: an end that is not at the exact optimum.
 """
 
 from __future__ import annotations
@@ -34,9 +41,23 @@ def _minimum_of(f: float, viol: float, minima: list[float]) -> tuple[str, bool]:
 
 
 def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
+    runs = _decoded(runs)
+    if "problem" in runs:
+        e = runs[runs["problem"] == "rpr2-e-exact"]
+        p = runs[runs["problem"].astype(str).str.match(r"rpr2-p\d-exact$")]
+    else:  # rows without a problem column are E rows (the suite had only those until Table 4.9x)
+        e, p = runs, runs.iloc[0:0]
+    return [_e_table(e, reference), _p_table(p, reference)]
+
+
+def _order(runs: pd.DataFrame, by: str) -> pd.DataFrame:
     from manipulators.synthesis.rpr2_exact_suite import SOLVERS
 
-    runs = _decoded(runs)
+    order = {s: k for k, s in enumerate(SOLVERS)}
+    return runs.assign(_o=[order.get(s, len(order)) for s in runs["solver"]]).sort_values([by, "_o"])
+
+
+def _e_table(runs: pd.DataFrame, reference: dict | None) -> Table:
     opt = (reference or {}).get("exact_optimum") or {"minima": [], "starts": 0}
     minima = [float(m[0]) for m in opt.get("minima", [])]
     rows: list[dict[str, Any]] = []
@@ -50,9 +71,7 @@ def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
                      "chord h": _num(ev.get("h"), ".2g"), "d*": _fmt_d(d_m), "time_s": ""})
         flags.append(False)
     if not runs.empty:
-        order = {s: k for k, s in enumerate(SOLVERS)}
-        runs = runs.assign(_o=[order.get(s, len(order)) for s in runs["solver"]]).sort_values(["start", "_o"])
-        for _, r in runs.iterrows():
+        for _, r in _order(runs, "start").iterrows():
             x, f, viol = run_end(r)
             ev = _evaluate("e", x) if x.size == 5 else {}
             at, ok = _minimum_of(f, viol, minima)
@@ -64,7 +83,7 @@ def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
             flags.append(not ok and r["status"] != "not_applicable")
     frame = pd.DataFrame(rows)
     flag_frame = column_flags(frame, **{"local minimum": flags})
-    return [Table(
+    return Table(
         name="table_4_7x",
         title="Table 4.7x: E synthesis (4.14) in exact smooth form from SP1-SP4, every constrained solver at its "
               "defaults",
@@ -82,4 +101,59 @@ def tables(runs: pd.DataFrame, reference: dict | None = None) -> list[Table]:
                "'dW_p exact': area of W_p outside the exact workspace (shapely); 'chord f', 'chord h': Table 4.7's "
                "dW_c and dW_p (chord 0.1, triangle scheme) at the same design, for comparison with that table.",
                "No thesis numbers: this formulation is ours (docs/manipulators.md, 'E synthesis in exact form'). "
-               "Regenerate: python -m harness run --suite rpr2-exact."])]
+               "Regenerate: python -m harness run --suite rpr2-exact."])
+
+
+def _prescribed_of(problem: str) -> str:
+    return f"P{problem.split('-')[1][1:]}"  # rpr2-p1-exact -> P1
+
+
+def _p_table(runs: pd.DataFrame, reference: dict | None) -> Table:
+    best = (reference or {}).get("exact_p_optimum") or {}
+    rows: list[dict[str, Any]] = []
+    flags: list[bool] = []
+    for P in ("P1", "P2", "P3"):
+        opt = best.get(P) or {}
+        if opt.get("d") is not None:
+            ev = _evaluate("p", opt["d"], P)
+            reached_by = (opt.get("minima") or [[None, None, 0]])[0][2]
+            rows.append({"P": P, "solver": "(exact-model optimum)", "status": f"{reached_by} of "
+                         f"{opt.get('starts', 0)} starts", "N^fg": "", "t*": _num(opt["f"], ".6f"),
+                         "violation": "", "reached": "", "outside P (exact)": _num(ev.get("dwp_exact"), ".2g"),
+                         "chord g": _num(ev.get("g"), ".2g"), "d*": _fmt_d(opt["d"]), "time_s": ""})
+            flags.append(False)
+        sub = runs[runs["problem"].map(_prescribed_of) == P] if not runs.empty else runs
+        for _, r in (_order(sub, "start").iterrows() if not sub.empty else ()):
+            x, f, viol = run_end(r)
+            t = -f  # the problem minimizes -t
+            ev = _evaluate("p", x[:3], P) if x.size == 4 else {}
+            feasible = math.isfinite(viol) and viol <= FEAS_TOL
+            at = (feasible and math.isfinite(t) and "f" in opt
+                  and abs(t - float(opt["f"])) <= AT_MINIMUM_REL * (1.0 + abs(float(opt["f"]))))
+            reached = "exact optimum" if at else "none (infeasible)" if math.isfinite(viol) and not feasible else "none"
+            rows.append({"P": P, "solver": r["solver"], "status": _status(r), "N^fg": count_cell(r["nfg"]),
+                         "t*": _num(t, ".6f"), "violation": _num(viol, ".1e"), "reached": reached,
+                         "outside P (exact)": _num(ev.get("dwp_exact"), ".2g"), "chord g": _num(ev.get("g"), ".2g"),
+                         "d*": _fmt_d(x[:3]) if x.size else "", "time_s": _num(r.get("wall_time_s"), ".3g")})
+            flags.append(not at and r["status"] != "not_applicable")
+    frame = pd.DataFrame(rows)
+    flag_frame = column_flags(frame, reached=flags) if rows else None
+    return Table(
+        name="table_4_9x",
+        title="Table 4.9x: P synthesis (4.21) in exact smooth form for P1-P3, every constrained solver at its defaults",
+        frame=frame, flags=flag_frame,
+        notes=["Problem (manipulators.synthesis.rpr2_exact_suite.p_exact_problem): max t over z = [xA, yA, xB, t] "
+               "subject to kappa^-1 >= t at the 2048 boundary points over which suite rpr2 takes its P objective "
+               "(eq. 4.23), every leg length on P's boundary (512 points) within [4, 7] and P above the base line - "
+               "exactly P inside the workspace, with analytic derivatives; started at Section 4.7.3's d0 with t = "
+               "min kappa^-1 there. Table 4.9 poses the same synthesis with g (4.16) on chord workspaces (chord "
+               "0.1), which lets slivers of P fall outside the exact workspace at an end on g = 0.",
+               "t* = min kappa^-1 at the end (maximized); violation = the largest constraint violation, measured by "
+               "the harness's oracle; 'reached': the exact problem's best design (|t* - t_opt| <= "
+               f"{AT_MINIMUM_REL:g} (1 + |t_opt|), violation <= {FEAS_TOL:g}), from the stored multistart "
+               "(rpr2_exact.exact_optimum('p'): SLSQP from d0 and 24 seeded designs; the '(exact-model optimum)' "
+               "rows); flagged when not.",
+               "'outside P (exact)': area of P outside the exact workspace (shapely); 'chord g': Table 4.9's "
+               "constraint (4.16) at the same design, for comparison with that table.",
+               "No thesis numbers: this formulation is ours (docs/manipulators.md, 'P synthesis in exact form'). "
+               "Regenerate: python -m harness run --suite rpr2-exact."])

@@ -1,5 +1,5 @@
-"""The exact E problem of the 2-RPR synthesis (4.14): an analysis of the ``rpr2`` suite, not a
-problem of it.
+"""The exact E and P problems of the 2-RPR synthesis ((4.14), (4.21)): analyses of the ``rpr2``
+suite, not problems of it.
 
 The suite's E problem (`rpr2_suite.e_problem`) uses the thesis's chord method and triangle
 scheme (4.9).  Here the same synthesis is written exactly and smoothly (closed-form areas,
@@ -17,12 +17,14 @@ from typing import Any
 import numpy as np
 
 from ..prescribed import PRESCRIBED, Prescribed
-from .rpr2_suite import LMAX_RATIO, STARTS, design_o
+from ..rpr2 import inverse_condition
+from .rpr2_suite import LMAX_RATIO, P_LIMITS, P_START, STARTS, design_o
 
-__all__ = ["EXACT_K", "exact_e_problem", "exact_polish", "exact_optimum", "thesis_e_designs", "reference",
-           "design_key"]
+__all__ = ["EXACT_K", "KINV_K", "exact_e_problem", "exact_p_problem", "exact_polish", "exact_optimum",
+           "thesis_e_designs", "reference", "design_key"]
 
-EXACT_K = 512  # points of W_p's boundary at which the exact E problem's leg limits are imposed
+EXACT_K = 512  # points of W_p's boundary at which the exact E and P problems' leg limits are imposed
+KINV_K = 2048  # equally spaced boundary points of suite rpr2's P objective (`rpr2_suite._p_objective`)
 
 
 def thesis_e_designs() -> dict[str, np.ndarray]:
@@ -81,6 +83,68 @@ def exact_e_problem(prescribed: Prescribed | str = "P1", k: int = EXACT_K):
     return f, cons
 
 
+def exact_p_problem(prescribed: Prescribed | str = "P1", k: int = EXACT_K, k_kinv: int = KINV_K):
+    """P synthesis (4.21) in exact, smooth (epigraph) form: ``cons(z) -> (value, jacobian)``,
+    value >= 0 where the design z = [xA, yA, xB, t] is feasible (l in [4, 7], Section 4.7.3).
+
+    Suite ``rpr2`` maximizes f(d) = min kappa^-1 over ``k_kinv`` equally spaced points of
+    dP subject to g(d) <= 0 (4.16) on chord workspaces.  Here: max t subject to
+    kappa^-1(b_i) - t >= 0 at those same points (eq. 4.23: kappa^-1 = (y - yA)(xB - xA) /
+    (l1 l2), so t* equals the suite's f at an enclosing design), and P inside the exact
+    workspace, stated as in `exact_e_problem`: every leg length at ``k`` points of dP within
+    [4, 7] (4k rows) and P above the base line (one row).  Rows: k_kinv + 4k + 1, all with
+    analytic derivatives.  A design with xA == xB has kappa^-1 = 0 (and finite derivatives).
+    """
+    P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
+    B, U = P.points(k), _kinv_points(P, k_kinv)
+    y_min = float(min(B[:, 1].min(), U[:, 1].min(), P.points(16 * k)[:, 1].min()))
+    (lo, _), (hi, _) = P_LIMITS
+
+    def cons(z):
+        xA, yA, xB, t = np.asarray(z, dtype=float)
+        # kappa^-1 = dy w / (l1 l2) at U and its derivatives, written without dividing by dy or w
+        ux, dy = U[:, 0], U[:, 1] - yA
+        a1, a2, w = ux - xA, ux - xB, xB - xA
+        l1, l2 = np.hypot(a1, dy), np.hypot(a2, dy)
+        kv = inverse_condition(xA, yA, xB, U)
+        q = 1.0 / (l1 * l2)
+        dk = np.column_stack([-dy * q + kv * a1 / l1**2,
+                              -w * q + kv * dy * (1.0 / l1**2 + 1.0 / l2**2),
+                              dy * q + kv * a2 / l2**2,
+                              -np.ones(k_kinv)])
+        bx, by = B[:, 0], B[:, 1] - yA
+        m1, m2 = np.hypot(bx - xA, by), np.hypot(bx - xB, by)
+        e1x, e1y, e2x, e2y = (bx - xA) / m1, by / m1, (bx - xB) / m2, by / m2
+        zk = np.zeros(k)
+        val = np.concatenate([kv - t, m1 - lo, hi - m1, m2 - lo, hi - m2, [y_min - yA]])
+        jac = np.vstack([dk,
+                         np.column_stack([-e1x, -e1y, zk, zk]), np.column_stack([e1x, e1y, zk, zk]),
+                         np.column_stack([zk, -e2y, -e2x, zk]), np.column_stack([zk, e2y, e2x, zk]),
+                         [[0.0, -1.0, 0.0, 0.0]]])
+        return val, jac
+
+    return cons
+
+
+def _kinv_points(P: Prescribed, k_kinv: int) -> np.ndarray:
+    """The ``k_kinv`` equally spaced points of dP over which suite rpr2 takes min kappa^-1."""
+    return P.points_at(2 * np.pi * np.arange(k_kinv) / k_kinv)
+
+
+def _lifted(d, U: np.ndarray) -> np.ndarray:
+    """[xA, yA, xB, t] with t = min kappa^-1 of the design d over the points U: the kappa rows of
+    `exact_p_problem` hold there, with equality at the minimizing point."""
+    d = np.asarray(d, dtype=float)
+    return np.append(d, float(inverse_condition(d[0], d[1], d[2], U).min()))
+
+
+def p_start(prescribed: Prescribed | str = "P1", k_kinv: int = KINV_K) -> np.ndarray:
+    """The exact P problem's start: Section 4.7.3's d0 with t = min kappa^-1 at d0 (the suite's
+    f(d0)), so that it is exactly as feasible as d0 is."""
+    P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
+    return _lifted(P_START, _kinv_points(P, k_kinv))
+
+
 def _slsqp(d0, f, cons, maxiter: int = 300, bounds=None):
     from scipy.optimize import minimize
 
@@ -129,10 +193,14 @@ def exact_optimum(kind: str = "e", prescribed: Prescribed | str = "P1", n_starts
     ``f`` (= dW_c, with dW_p = 0) of the best, ``starts`` (number of starts) and ``minima``:
     the distinct local minima reached, ``(f, d, count)`` sorted by f (ends within 1e-6 in f
     counted as one). An independent reference for what any solver of the chord formulation
-    can reach; a multistart, not a proof of global optimality. Only kind "e" here.
+    can reach; a multistart, not a proof of global optimality.  Kind "p": the same for
+    `exact_p_problem` (`_exact_p_optimum`).
     """
+    if kind.lower() == "p":
+        return _exact_p_optimum(prescribed, n_starts, k, seed)
     if kind.lower() != "e":
-        raise ValueError(f"exact_optimum: only kind 'e' (E synthesis, 4.14), got {kind!r}")
+        raise ValueError(f"exact_optimum: kind must be 'e' (E synthesis, 4.14) or 'p' (P synthesis, 4.21), "
+                         f"got {kind!r}")
     P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
     f, cons = exact_e_problem(P, k)
     rng = np.random.default_rng(seed)
@@ -154,6 +222,40 @@ def exact_optimum(kind: str = "e", prescribed: Prescribed | str = "P1", n_starts
     if not minima:
         return {"d": None, "f": float("nan"), "starts": len(starts), "minima": []}
     return {"d": minima[0][1], "f": minima[0][0], "starts": len(starts), "minima": [tuple(m) for m in minima]}
+
+
+def _exact_p_optimum(prescribed: Prescribed | str, n_starts: int, k: int, seed: int) -> dict[str, Any]:
+    """The best design of the exact P problem (`exact_p_problem`), for Table 4.9x.
+
+    SciPy SLSQP (analytic derivatives) from `p_start` and ``n_starts`` seeded random designs
+    (xA in [-8, 0], yA in [-4, y_min(P)], xB in [0, 8], each lifted by t = its min kappa^-1);
+    keeps the ends whose constraints hold (to 1e-7).  Returns ``d`` (= [xA, yA, xB]) and ``f``
+    (= t*, min kappa^-1, maximized) of the best, ``starts`` and ``minima``: the distinct ends
+    ``(t, d, count)``, best first (ends within 1e-6 in t counted as one)."""
+    from scipy.optimize import minimize
+
+    P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
+    cons = exact_p_problem(P, k)
+    U = _kinv_points(P, KINV_K)
+    rng = np.random.default_rng(seed)
+    lo, hi = np.array([-8.0, -4.0, 0.0]), np.array([0.0, float(P.points(k)[:, 1].min()), 8.0])
+    designs = [np.asarray(P_START, dtype=float)] + list(rng.uniform(lo, hi, (n_starts, 3)))
+    minima: list[list] = []
+    for d0 in designs:
+        z = minimize(lambda z: -z[3], _lifted(d0, U), jac=lambda z: np.array([0.0, 0.0, 0.0, -1.0]), method="SLSQP",
+                     constraints=[{"type": "ineq", "fun": lambda z: cons(z)[0], "jac": lambda z: cons(z)[1]}],
+                     options={"maxiter": 300, "ftol": 1e-12}).x
+        if not np.all(np.isfinite(z)) or cons(z)[0].min() < -1e-7:
+            continue
+        same = [m for m in minima if abs(m[0] - z[3]) < 1e-6]
+        if same:
+            same[0][2] += 1
+        else:
+            minima.append([float(z[3]), z[:3], 1])
+    minima.sort(key=lambda m: -m[0])
+    if not minima:
+        return {"d": None, "f": float("nan"), "starts": len(designs), "minima": []}
+    return {"d": minima[0][1], "f": minima[0][0], "starts": len(designs), "minima": [tuple(m) for m in minima]}
 
 
 def design_key(d) -> str:

@@ -1,4 +1,5 @@
-"""Suite ``rpr2-exact``: 2-RPR E synthesis (4.14) in exact, smooth form, from SP1-SP4.
+"""Suite ``rpr2-exact``: 2-RPR E synthesis (4.14) from SP1-SP4 and P synthesis (4.21) for P1-P3,
+in exact, smooth form.
 
 Table 4.7 poses E synthesis as the thesis does: min dW_c subject to the equality
 h = dW_p = 0, both areas from the chord method (Appendix C, chord 0.1) and the triangle
@@ -14,6 +15,13 @@ at ``EXACT_K`` boundary points, with analytic derivatives.  This suite makes tha
 ordinary `Problem` (`e_exact_problem`) and runs every constrained solver on it from the
 thesis's starts, at its defaults: what each solver reaches once the formulation, not the
 solver, is the difficulty.  Table plug-in ``harness.tables.rpr2_exact`` (Table 4.7x).
+
+P synthesis likewise (Table 4.9's cases; `p_exact_problem`): suite ``rpr2`` maximizes min
+kappa^-1 over P's boundary subject to g(d) <= 0 (4.16) on chord workspaces, whose sagitta
+lets slivers of P fall outside the exact workspace at an end on g = 0 (Table 4.9's
+'enclosed' column).  `rpr2_exact.exact_p_problem` states it exactly, in epigraph form: max t
+subject to kappa^-1 >= t at the suite's 2048 boundary points and the leg limits [4, 7] at
+``EXACT_K`` of them (Table 4.9x).
 """
 
 from __future__ import annotations
@@ -26,10 +34,13 @@ from problems import Case, Problem, Suite
 
 from ..prescribed import PRESCRIBED
 from ._design_cache import DesignCache
-from .rpr2_exact import EXACT_K, _jsonable, exact_e_problem, exact_optimum
+from .rpr2_exact import EXACT_K, _jsonable, exact_e_problem, exact_optimum, exact_p_problem, p_start
 from .rpr2_suite import STARTS
 
-__all__ = ["SUITE", "SOLVERS", "L_MIN_LOWER", "e_exact_problem", "reference"]
+__all__ = ["SUITE", "SOLVERS", "L_MIN_LOWER", "P_CASES", "e_exact_problem", "p_exact_problem", "reference"]
+
+#: the prescribed workspaces of Table 4.9 (Section 4.7.3)
+P_CASES = ("P1", "P2", "P3")
 
 #: the constrained solvers of suite ``rpr2`` (SQSD is unconstrained)
 SOLVERS = ("lfopc", "etopc", "dynamic-q", "dynamic-q-plus", "scipy-slsqp", "ipopt", "nlopt-mma", "scipy-cobyla")
@@ -66,21 +77,53 @@ def e_exact_problem(start: str = "SP1", prescribed: str = "P1", k: int = EXACT_K
         tags=("manipulator", "rpr2", "E", "exact"), meta={"prescribed": prescribed, "k": int(k), "kind": "e-exact"})
 
 
+def p_exact_problem(prescribed: str = "P1", k: int = EXACT_K) -> Problem:
+    """P synthesis (4.21) for Table 4.9's ``prescribed`` workspace in exact form as a `Problem`.
+
+    Variables z = [xA, yA, xB, t] (l in [4, 7], Section 4.7.3), objective -t (max t), started at
+    Section 4.7.3's d0 lifted by t = min kappa^-1 there (`rpr2_exact.p_start`); inequalities
+    g(z) <= 0: kappa^-1 >= t at the 2048 boundary points of suite rpr2's objective, the leg
+    limits at ``k`` boundary points (4k rows) and P above the base line (one row), all with
+    analytic derivatives (`rpr2_exact.exact_p_problem`).  No bounds.
+    """
+    if prescribed not in P_CASES:
+        raise ValueError(f"unknown prescribed workspace {prescribed!r}; valid: {', '.join(P_CASES)}")
+    if not (isinstance(k, (int, np.integer)) and k >= 3):
+        raise ValueError(f"k (boundary points) must be an integer >= 3, got {k!r}")
+    cons = exact_p_problem(prescribed, int(k))
+    c_memo: DesignCache[tuple[np.ndarray, np.ndarray]] = DesignCache(4)
+    x0 = p_start(prescribed)
+    return Problem(
+        name=f"rpr2-p{prescribed[-1]}-exact", x0=x0,
+        objective=lambda z: -float(z[3]), gradient=lambda z: np.array([0.0, 0.0, 0.0, -1.0]),
+        ineq=lambda z: -c_memo.get(z, cons)[0], ineq_jacobian=lambda z: -c_memo.get(z, cons)[1],
+        n_ineq=cons(x0)[0].size,
+        source="Hay 2003, Sec. 4.7, eq. (4.21) in exact epigraph form (ours: leg limits on dP, no chord method)",
+        tags=("manipulator", "rpr2", "P", "exact"), meta={"prescribed": prescribed, "k": int(k), "kind": "p-exact"})
+
+
 def _build() -> list[Case]:
-    return [Case(e_exact_problem(sp), "rpr2-e-exact", start=sp, meta={"table": "4.7x"}) for sp in STARTS]
+    cases = [Case(e_exact_problem(sp), "rpr2-e-exact", start=sp, meta={"table": "4.7x"}) for sp in STARTS]
+    cases += [Case(p_exact_problem(p), f"rpr2-p{p[-1]}-exact", start="d0", meta={"table": "4.9x", "prescribed": p})
+              for p in P_CASES]
+    return cases
 
 
 def reference(runs=None, stored: dict[str, Any] | None = None) -> dict[str, Any]:
-    """The exact E problem's local minima (`rpr2_exact.exact_optimum`: multistart SLSQP), for
-    Table 4.7x to name the minimum each end reached; computed once and kept."""
+    """The exact E problem's local minima and the exact P problems' best designs
+    (`rpr2_exact.exact_optimum`: multistart SLSQP), for Tables 4.7x and 4.9x to name the
+    minimum each end reached; computed once and kept."""
     stored = dict(stored or {})
-    return {"exact_optimum": stored.get("exact_optimum") or _jsonable(exact_optimum("e"))}
+    p_opt = dict(stored.get("exact_p_optimum") or {})
+    for p in P_CASES:
+        p_opt[p] = p_opt.get(p) or _jsonable(exact_optimum("p", p))
+    return {"exact_optimum": stored.get("exact_optimum") or _jsonable(exact_optimum("e")), "exact_p_optimum": p_opt}
 
 
 SUITE = Suite(
     name="rpr2-exact",
-    description="2-RPR E synthesis (4.14) in exact smooth form (no chord method) from SP1-SP4, every constrained "
-                "solver at its defaults (Table 4.7x)",
+    description="2-RPR E synthesis (4.14) from SP1-SP4 and P synthesis (4.21) for P1-P3 in exact smooth form (no "
+                "chord method), every constrained solver at its defaults (Tables 4.7x, 4.9x)",
     build=_build,
     solvers=SOLVERS,
     tables="harness.tables.rpr2_exact",

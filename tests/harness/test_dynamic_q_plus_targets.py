@@ -179,6 +179,16 @@ def test_rpr2_p_synthesis_encloses_wherever_the_literal_dynamic_q_does():
     assert all(plus == "True" or literal != "True" for plus, literal in got.values())
 
 
+def test_rpr2_exact_p_synthesis_at_the_exact_optimum():
+    """The P target in the exact form of (4.21) (suite rpr2-exact, Table 4.9x: kappa^-1 >= t at
+    the same 2048 points, leg limits on dP): Dynamic-Q+ ends at the exact optimum for P1-P3,
+    so at or above the literal Dynamic-Q's t* wherever that end is feasible."""
+    t = _csv("rpr2-exact", "table_4_9x").set_index(["P", "solver"])
+    got = {p: t.loc[(p, PLUS), "reached"] for p in ("P1", "P2", "P3")}
+    print("rpr2-exact P:", got, {p: t.loc[(p, PLUS), "t*"] for p in got})
+    assert all(v == "exact optimum" for v in got.values())
+
+
 # -- 3-RPR (thesis Ch. 5) -----------------------------------------------------------------------
 
 KINV_TOL = 0.01

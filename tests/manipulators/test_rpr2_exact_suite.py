@@ -23,8 +23,9 @@ def _central(fun, x, h=1e-6):
 
 def test_suite_is_registered_with_every_start_and_constrained_solver():
     suite = get_suite("rpr2-exact")
-    cases = suite.cases()
+    cases = [c for c in suite.cases() if c.problem.name.startswith("rpr2-e-exact")]
     assert [c.start for c in cases] == list(STARTS)
+    assert [c.problem.name for c in suite.cases()[len(cases):]] == [f"rpr2-p{i}-exact" for i in (1, 2, 3)]
     assert "sqsd" not in suite.solvers and {"dynamic-q", "dynamic-q-plus", "scipy-slsqp"} <= set(suite.solvers)
     for c in cases:
         np.testing.assert_array_equal(c.problem.x0, STARTS[c.start])
@@ -74,7 +75,7 @@ def test_table_names_the_minimum_reached_and_flags_other_ends():
         {"solver": "scipy-cobyla", "start": "SP1", "f": 3.5, "max_violation": 0.0, "nfg": 100,
          "status": "converged", "x": [-5.1, -2.2, 5.1, 5.9, 5.9], "wall_time_s": 3.0},
     ])
-    (t,) = build_tables("rpr2-exact", runs, reference={"exact_optimum": {"minima": minima, "starts": 32}})
+    t, _ = build_tables("rpr2-exact", runs, reference={"exact_optimum": {"minima": minima, "starts": 32}})
     ours = t.frame[t.frame["start"] == "SP1"].set_index("solver")
     assert ours.loc["dynamic-q-plus", "local minimum"] == "3.1436"
     assert ours.loc["nlopt-mma", "local minimum"] == "none (infeasible)"
@@ -106,3 +107,79 @@ def test_inequalities_hold_iff_the_exact_workspace_encloses_w_p(xa, ya, xb, u1, 
         assert dwp <= 1e-9
     elif g > 1e-3:
         assert dwp > 0.0
+
+
+# -- P synthesis (4.21) in exact form (Table 4.9x) -----------------------------------------------
+
+@pytest.mark.parametrize("prescribed", S.P_CASES)
+@pytest.mark.parametrize("z", [[-4.0, -0.1, 4.0, 0.5], [-3.9, -1.0, 3.9, 0.95], [-3.4, -0.65, 4.1, 0.9],
+                               [-2.0, -2.5, 2.5, 0.1]])
+def test_p_exact_jacobian_matches_central_differences(prescribed, z):
+    p = S.p_exact_problem(prescribed, k=64)
+    z = np.asarray(z, dtype=float)
+    np.testing.assert_allclose(p.gradient(z), _central(p.objective, z).ravel(), atol=1e-9)
+    np.testing.assert_allclose(p.ineq_jacobian(z), _central(p.ineq, z), rtol=1e-5, atol=1e-6)
+
+
+def test_p_exact_problem_starts_at_d0_as_feasible_as_d0():
+    """x0 = [d0, min kappa^-1(d0)]: the kappa rows hold with equality at the minimizing point, and
+    t is the suite's P objective at d0."""
+    from manipulators.synthesis.rpr2_suite import P_START, p_problem
+
+    p = S.p_exact_problem("P1")
+    np.testing.assert_array_equal(p.x0[:3], P_START)
+    assert p.x0[3] == pytest.approx(-p_problem("P1").objective(np.asarray(P_START, dtype=float)), abs=1e-12)
+    assert p.ineq(p.x0)[:2048].max() == 0.0
+    assert p.ineq(p.x0).shape == (2048 + 4 * EXACT_K + 1,)
+    with pytest.raises(ValueError, match="unknown prescribed workspace 'P4'; valid: P1, P2, P3"):
+        S.p_exact_problem("P4")
+
+
+def test_dynamic_q_plus_reaches_the_exact_p_optimum():
+    from manipulators.synthesis.rpr2_exact import exact_optimum
+
+    opt = exact_optimum("p", "P2", n_starts=4)
+    r = solve(S.p_exact_problem("P2"), "dynamic-q-plus")
+    assert r.success and r.max_violation <= 1e-6
+    assert -r.f == pytest.approx(opt["f"], rel=1e-6)
+    ev = evaluate("p", r.x[:3], "P2")
+    # t* is the suite's objective there, up to the violation the kappa rows may keep
+    assert ev["enclosed"] and abs(ev["f"] - (-r.f)) <= r.max_violation + 1e-12
+
+
+_PP = S.p_exact_problem("P1")
+_DENSE_P = PRESCRIBED["P1"].points(4096)
+
+
+@settings(max_examples=40, deadline=None, derandomize=True)
+@given(st.floats(-4.6, -3.2), st.floats(-1.6, -0.4), st.floats(3.2, 4.6))
+def test_p_leg_rows_hold_iff_the_exact_workspace_encloses_p(xa, ya, xb):
+    """The leg-limit and base-line rows of the exact P problem are <= 0 exactly when P lies inside the
+    exact workspace (shapely); t = 0 keeps the kappa rows out of it (kappa^-1 > 0 above the base)."""
+    g = float(_PP.ineq(np.array([xa, ya, xb, 0.0]))[2048:].max())
+    dwp = evaluate("p", np.array([xa, ya, xb]), "P1", exact=True)["dwp_exact"]
+    if g < -1e-3:
+        assert dwp <= 1e-9
+    elif g > 1e-3:
+        assert dwp > 0.0
+
+
+def test_table_4_9x_names_the_exact_optimum_and_flags_other_ends():
+    opt = {"P1": {"d": [-3.86085158, -1.03714935, 3.86085158], "f": 0.9563311236, "starts": 25,
+                  "minima": [[0.9563311236, [-3.86085158, -1.03714935, 3.86085158], 25]]}}
+    runs = pd.DataFrame([
+        {"problem": "rpr2-p1-exact", "solver": "dynamic-q-plus", "start": "d0", "f": -0.9563311260, "nfg": 5,
+         "max_violation": 3e-9, "status": "converged", "x": [-3.86085, -1.03715, 3.86085, 0.95633113],
+         "wall_time_s": 0.5},
+        {"problem": "rpr2-p1-exact", "solver": "dynamic-q", "start": "d0", "f": -0.9563321, "nfg": 101,
+         "max_violation": 1.5e-6, "status": "max_iter", "x": [-3.86085, -1.03715, 3.86085, 0.9563321],
+         "wall_time_s": 7.0},
+    ])
+    _, t = build_tables("rpr2-exact", runs, reference={"exact_p_optimum": opt})
+    assert t.name == "table_4_9x"
+    ours = t.frame.set_index("solver")
+    assert ours.loc["(exact-model optimum)", "t*"] == "0.956331"
+    assert ours.loc["dynamic-q-plus", "reached"] == "exact optimum"
+    assert ours.loc["dynamic-q", "reached"] == "none (infeasible)"
+    flagged = dict(zip(t.frame["solver"], t.flags["reached"]))
+    assert flagged == {"(exact-model optimum)": False, "dynamic-q-plus": False, "dynamic-q": True}
