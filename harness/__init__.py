@@ -5,7 +5,9 @@
 >>> runs = harness.load_results("appendix-a")
 >>> tables, paths = harness.render_tables("appendix-a")
 
-``harness.pin_blas()``, called before NumPy is imported, loads the same numerical kernels as
+``harness.check_problem(problem)`` evaluates a problem's callables once at x0 and names any
+wrong shape (what ``run --suite-file`` checks before running).  ``harness.pin_blas()``,
+called before NumPy is imported, loads the same numerical kernels as
 the harness's runs (their counts then match the stored ones; docs/harness.md).
 
 Command line: ``python -m harness --help``.  Names are imported lazily so that worker
@@ -21,7 +23,8 @@ _EXPORTS = {
     "run_suite": "._runner", "plan_suite": "._runner", "prune_suite": "._runner", "RunSummary": "._runner",
     "load_results": "._api", "render_tables": "._api",
     "NoResults": "._api", "HarnessArgumentError": "._plan", "plot": "._plots", "write_report": "._report",
-    "compare_dirs": "._compare", "pin_blas": "._blas",
+    "compare_dirs": "._compare", "pin_blas": "._blas", "check_problem": "._preflight",
+    "ProblemInputError": "._preflight",
 }
 
 __all__ = list(_EXPORTS)

@@ -26,6 +26,7 @@ from . import _manifest
 from ._history import thin_history
 from ._plan import HarnessArgumentError, RunSpec, name_list, plan_runs
 from ._pool import LocalPool
+from ._preflight import check_problems
 from ._progress import Progress
 from ._store import Store, retry_keys
 from ._suites import SolverModuleError, SuiteRef, import_modules, ref_for
@@ -211,6 +212,10 @@ def _plan(suite: str | None, suite_file: str | os.PathLike[str] | None, solvers:
     specs = plan_runs(ref, s, solver_specs, list(problems) if problems else None, timeout, tuple(modules))
     if every_solver:  # only the solvers that handle each problem; a bad plan would be ours, not the user's
         specs = [sp for sp in specs if sp.not_applicable is None and sp.plan_error is None]
+    if ref.file:  # a user's problems: wrong shapes are bad input before any run, doubtful derivatives a warning
+        ids = {sp.case_id for sp in specs}
+        for note in check_problems(c.problem for c in s.cases() if c.case_id in ids):
+            print(f"warning: {note}", file=sys.stderr, flush=True)
     return ref, specs
 
 
