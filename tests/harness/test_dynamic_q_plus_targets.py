@@ -127,7 +127,8 @@ def test_rpr2_exact_E_synthesis_from_every_start():
 @pytest.mark.xfail(strict=True, reason="chord formulation (4.14): h = dW_p >= 0 vanishes with its gradient on "
                    "the feasible set and is linearized by forward differences of a chord-0.1 boundary; the ends "
                    "are enclosing designs above the basin's minimum 3.1436 from SP1, SP3, SP4, and the E cells "
-                   "are a spread for every solver (Table 4.7s)")
+                   "are a spread for every solver (Table 4.7s); with central differences (a diagnostic) the "
+                   "target holds from every start (docs/dynamic_q_plus_targets.md)")
 def test_rpr2_chord_E_synthesis_from_every_start():
     """The same target on suite rpr2's chord formulation (Table 4.7)."""
     t = _csv("rpr2", "table_4_7")
@@ -220,7 +221,7 @@ def test_rpr3_chord_p2_p3_at_the_exact_optimum(stem, p):
 
 @pytest.mark.xfail(strict=True, reason="chord formulation: f = min kappa^-1 over W_p's boundary points is a "
                    "kinked min of forward-differenced terms; from d0 Dynamic-Q+ stops 0.017 short of the exact "
-                   "local optimum 0.1707, and from starts within 1e-6 of d0 every solver's ends spread "
+                   "local optimum 0.1707, and from starts within 1e-6 of d0 the ends spread "
                    "(Dynamic-Q+ 0.085-0.154, SLSQP 0.103-0.163; Table 5.4s)")
 def test_rpr3_chord_mo_p1_at_the_exact_local_optimum():
     t = _rpr3("table_5_4")
