@@ -21,6 +21,7 @@ BUILTIN: dict[str, str] = {
     "hs": "problems.hs:SUITE",
     "rpr2": "manipulators.synthesis.rpr2_suite:SUITE",
     "rpr2-spread": "manipulators.synthesis.rpr2_spread_suite:SUITE",
+    "rpr2-central": "manipulators.synthesis.rpr2_central_suite:SUITE",
     "rpr2-exact": "manipulators.synthesis.rpr2_exact_suite:SUITE",
     "rpr3-exact": "manipulators.synthesis.rpr3_exact_suite:SUITE",
     "rpr3": "manipulators.synthesis.rpr3_suite:SUITE",

@@ -18,7 +18,7 @@ from problems.reference import thesis_table
 from ._base import Table, count
 from .rpr2 import E_REL, E_TARGET, O_LIMIT, _decoded, _evaluate, _num, _span
 
-__all__ = ["tables"]
+__all__ = ["tables", "spread_rows", "TOLERANCE_NOTES"]
 
 KINDS = {"rpr2-o": ("O", "o"), "rpr2-e": ("E", "e")}
 
@@ -55,7 +55,38 @@ def _solver_order(solver: str) -> tuple[int, str]:
 
 
 def tables(runs: pd.DataFrame) -> list[Table]:
-    from manipulators.synthesis.rpr2_spread_suite import EPS, parse_start
+    from manipulators.synthesis.rpr2_spread_suite import EPS
+
+    frame = pd.DataFrame(spread_rows(runs))
+    return [Table(
+        name="table_4_7s",
+        title=f"Table 4.7s: O and E synthesis ends from SP1-SP4 and from starts within {EPS:g} of them",
+        frame=frame, flags=None,
+        notes=[f"Each row: one solver (Dynamic-Q, the thesis's algorithm; Dynamic-Q+, our extension) with suite "
+               "rpr2's settings (O: Tables 4.3-4.6, E: Table 4.7) from the thesis start and from starts that "
+               f"differ from it by at most {EPS:g} in every component (seeded uniform; "
+               "manipulators.synthesis.rpr2_spread_suite). 'thesis f*' is the thesis's Dynamic-Q value.",
+               *TOLERANCE_NOTES,
+               "A row whose f* spread is far wider than its tolerance is a cell no implementation can pin: the "
+               "end depends on the start below the precision to which the thesis prints it. A row whose thesis "
+               "value lies outside the spread is not reproduced by our Dynamic-Q at all, whatever the start.",
+               "Regenerate: python -m harness run --suite rpr2-spread (about 9 minutes on 2 cores)."])]
+
+
+#: what the columns 'within tolerance' and 'f* <= 3.2, dW_p <= 0.01' test (also Table 4.7c's)
+TOLERANCE_NOTES = [
+    f"'within tolerance': the acceptance test of the row's table - O: f* <= {O_LIMIT}; E: f* within "
+    f"{E_REL:.0%} of the thesis and exact dW_p <= 0.01.",
+    f"'f* <= {E_TARGET}, dW_p <= 0.01' (E): an enclosing design (exact dW_p <= 0.01) no worse than "
+    f"{E_TARGET}, the target set for Dynamic-Q+ (docs/thesis_solvers.md; the exact E problem's local "
+    "minima are 3.1436 and 2.3087)."]
+
+
+def spread_rows(runs: pd.DataFrame) -> list[dict]:
+    """One row per (formulation, thesis start, solver) of runs from thesis starts and their
+    perturbed copies (start labels ``SP1``, ``SP1~1`` ...): the ends' spread beside the
+    thesis's value (Tables 4.7s and 4.7c)."""
+    from manipulators.synthesis.rpr2_spread_suite import parse_start
 
     runs = _decoded(runs)
     rows = []
@@ -93,24 +124,7 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                 "N^fg": _span([float(c) for c in map(count, g["nfg"]) if c is not None], ".0f"),
                 "status": ", ".join(f"{k} {v}" for k, v in st.items()),
             })
-    frame = pd.DataFrame(rows)
-    return [Table(
-        name="table_4_7s",
-        title=f"Table 4.7s: O and E synthesis ends from SP1-SP4 and from starts within {EPS:g} of them",
-        frame=frame, flags=None,
-        notes=[f"Each row: one solver (Dynamic-Q, the thesis's algorithm; Dynamic-Q+, our extension) with suite "
-               "rpr2's settings (O: Tables 4.3-4.6, E: Table 4.7) from the thesis start and from starts that "
-               f"differ from it by at most {EPS:g} in every component (seeded uniform; "
-               "manipulators.synthesis.rpr2_spread_suite). 'thesis f*' is the thesis's Dynamic-Q value.",
-               f"'within tolerance': the acceptance test of the row's table - O: f* <= {O_LIMIT}; E: f* within "
-               f"{E_REL:.0%} of the thesis and exact dW_p <= 0.01.",
-               f"'f* <= {E_TARGET}, dW_p <= 0.01' (E): an enclosing design (exact dW_p <= 0.01) no worse than "
-               f"{E_TARGET}, the target set for Dynamic-Q+ (docs/thesis_solvers.md; the exact E problem's local "
-               "minima are 3.1436 and 2.3087).",
-               "A row whose f* spread is far wider than its tolerance is a cell no implementation can pin: the "
-               "end depends on the start below the precision to which the thesis prints it. A row whose thesis "
-               "value lies outside the spread is not reproduced by our Dynamic-Q at all, whatever the start.",
-               "Regenerate: python -m harness run --suite rpr2-spread (about 9 minutes on 2 cores)."])]
+    return rows
 
 
 def _where(f_th: float, ends: np.ndarray) -> str:

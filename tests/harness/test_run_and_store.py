@@ -258,8 +258,8 @@ def test_suite_file_without_solvers_runs_every_solver_that_handles_it(mine_file,
     assert (runs["status"] != "not_applicable").all()
 
 
-@pytest.mark.parametrize("suite", ["appendix-a", "hs", "rpr2", "rpr2-exact", "rpr2-spread", "rpr3", "rpr3-spread",
-                                   "tdpm", "spatial"])
+@pytest.mark.parametrize("suite", ["appendix-a", "hs", "rpr2", "rpr2-exact", "rpr2-spread", "rpr2-central", "rpr3",
+                                   "rpr3-spread", "tdpm", "spatial"])
 def test_a_suite_loads_no_project_module_outside_its_code_version(suite):
     """The code version hashes the static import closure; a module loaded some other way (a lazy
     package attribute, importlib by name) would be edited without invalidating stored runs.
