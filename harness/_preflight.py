@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from problems import Problem
+from problems import Problem, fd_jacobian
 
 from ._plan import HarnessArgumentError
 
@@ -29,6 +29,8 @@ DERIVATIVE_CHECK_MAX_N = 200
 #: a derivative is reported when it differs from central differences by more than this, relative to
 #: max(1, its largest entry): far above the differences' own error for smooth functions (~1e-8)
 DERIVATIVE_RTOL = 1e-4
+#: the interval of those central differences (`problems.fd_jacobian`)
+DERIVATIVE_CHECK_STEP = 1e-6
 
 
 class ProblemInputError(HarnessArgumentError):
@@ -45,19 +47,6 @@ def _call(problem: Problem, what: str, fun: Callable[[np.ndarray], Any], x: np.n
     except (TypeError, ValueError):
         raise ProblemInputError(f"problem {problem.name!r}: {what}(x0) returned {type(out).__name__} {out!r:.80}, "
                                 "not numbers") from None
-
-
-def _central(fun: Callable[[np.ndarray], Any], x: np.ndarray) -> np.ndarray:
-    """Central differences of ``fun`` at x, one column per variable (step 1e-6 max(1, |x_i|))."""
-    cols = []
-    for i in range(x.size):
-        h = 1e-6 * max(1.0, abs(float(x[i])))
-        xp, xm = x.copy(), x.copy()
-        xp[i] += h
-        xm[i] -= h
-        cols.append((np.atleast_1d(np.asarray(fun(xp), dtype=float)).ravel()
-                     - np.atleast_1d(np.asarray(fun(xm), dtype=float)).ravel()) / (2 * h))
-    return np.column_stack(cols)
 
 
 def _compare(problem: Problem, what: str, given: np.ndarray, fd: np.ndarray) -> str | None:
@@ -116,7 +105,7 @@ def check_problem(problem: Problem, derivatives: bool = True) -> list[str]:
         for name, fun in pairs:
             if name in values and fun is not None:
                 try:
-                    fd = _central(fun, x0)
+                    fd = fd_jacobian(fun, x0, None, DERIVATIVE_CHECK_STEP, "central")[0]
                 except Exception:  # noqa: BLE001 - a function undefined next to x0: no comparison
                     continue
                 note = _compare(problem, name, values[name].reshape(fd.shape), fd)

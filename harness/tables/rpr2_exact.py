@@ -127,10 +127,8 @@ def _p_table(runs: pd.DataFrame, reference: dict | None) -> Table:
             x, f, viol = run_end(r)
             t = -f  # the problem minimizes -t
             ev = _evaluate("p", x[:3], P) if x.size == 4 else {}
-            feasible = math.isfinite(viol) and viol <= FEAS_TOL
-            at = (feasible and math.isfinite(t) and "f" in opt
-                  and abs(t - float(opt["f"])) <= AT_MINIMUM_REL * (1.0 + abs(float(opt["f"]))))
-            reached = "exact optimum" if at else "none (infeasible)" if math.isfinite(viol) and not feasible else "none"
+            label, at = _minimum_of(t, viol, [float(opt["f"])] if "f" in opt else [])
+            reached = "exact optimum" if at else label
             rows.append({"P": P, "solver": r["solver"], "status": _status(r), "N^fg": count_cell(r["nfg"]),
                          "t*": _num(t, ".6f"), "violation": _num(viol, ".1e"), "reached": reached,
                          "outside P (exact)": _num(ev.get("dwp_exact"), ".2g"), "chord g": _num(ev.get("g"), ".2g"),
