@@ -207,21 +207,28 @@ def exact_optimum(kind: str = "e", prescribed: Prescribed | str = "P1", n_starts
     lo = np.array([-8.0, -4.0, 0.0, 2.0, 2.0])
     hi = np.array([0.0, float(P.points(k)[:, 1].min()), 8.0, 7.0, 7.0])
     starts = list(STARTS.values()) + list(thesis_e_designs().values()) + list(rng.uniform(lo, hi, (n_starts, 5)))
-    minima: list[list] = []
+    ends = []
     for x0 in starts:
         x = _slsqp(x0, f, cons).x
-        if cons(x)[0].min() < -1e-7:
-            continue
-        fx = float(f(x)[0])
-        same = [m for m in minima if abs(m[0] - fx) < 1e-6]
+        if cons(x)[0].min() >= -1e-7:
+            ends.append((float(f(x)[0]), x))
+    return _distinct_ends(ends, len(starts), best=min)
+
+
+def _distinct_ends(ends: list[tuple[float, np.ndarray]], n_starts: int, best) -> dict[str, Any]:
+    """The multistarts' summary: the feasible ends ``(value, design)`` grouped by value (within
+    1e-6: one end, counted), best first (``best`` is min or max), and the best of them."""
+    minima: list[list] = []
+    for v, d in ends:
+        same = [m for m in minima if abs(m[0] - v) < 1e-6]
         if same:
             same[0][2] += 1
         else:
-            minima.append([fx, x, 1])
-    minima.sort(key=lambda m: m[0])
+            minima.append([v, d, 1])
+    minima.sort(key=lambda m: m[0], reverse=best is max)
     if not minima:
-        return {"d": None, "f": float("nan"), "starts": len(starts), "minima": []}
-    return {"d": minima[0][1], "f": minima[0][0], "starts": len(starts), "minima": [tuple(m) for m in minima]}
+        return {"d": None, "f": float("nan"), "starts": n_starts, "minima": []}
+    return {"d": minima[0][1], "f": minima[0][0], "starts": n_starts, "minima": [tuple(m) for m in minima]}
 
 
 def _exact_p_optimum(prescribed: Prescribed | str, n_starts: int, k: int, seed: int) -> dict[str, Any]:
@@ -240,22 +247,14 @@ def _exact_p_optimum(prescribed: Prescribed | str, n_starts: int, k: int, seed: 
     rng = np.random.default_rng(seed)
     lo, hi = np.array([-8.0, -4.0, 0.0]), np.array([0.0, float(P.points(k)[:, 1].min()), 8.0])
     designs = [np.asarray(P_START, dtype=float)] + list(rng.uniform(lo, hi, (n_starts, 3)))
-    minima: list[list] = []
+    ends = []
     for d0 in designs:
         z = minimize(lambda z: -z[3], _lifted(d0, U), jac=lambda z: np.array([0.0, 0.0, 0.0, -1.0]), method="SLSQP",
                      constraints=[{"type": "ineq", "fun": lambda z: cons(z)[0], "jac": lambda z: cons(z)[1]}],
                      options={"maxiter": 300, "ftol": 1e-12}).x
-        if not np.all(np.isfinite(z)) or cons(z)[0].min() < -1e-7:
-            continue
-        same = [m for m in minima if abs(m[0] - z[3]) < 1e-6]
-        if same:
-            same[0][2] += 1
-        else:
-            minima.append([float(z[3]), z[:3], 1])
-    minima.sort(key=lambda m: -m[0])
-    if not minima:
-        return {"d": None, "f": float("nan"), "starts": len(designs), "minima": []}
-    return {"d": minima[0][1], "f": minima[0][0], "starts": len(designs), "minima": [tuple(m) for m in minima]}
+        if np.all(np.isfinite(z)) and cons(z)[0].min() >= -1e-7:
+            ends.append((float(z[3]), z[:3]))
+    return _distinct_ends(ends, len(designs), best=max)
 
 
 def design_key(d) -> str:
