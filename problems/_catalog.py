@@ -8,13 +8,17 @@ a name already taken is refused.
 
 from __future__ import annotations
 
-from typing import Any
+import importlib
+from typing import TYPE_CHECKING, Any
 
 from ._registry import NAME, Registry, UnknownName
 from ._suite import Suite
 
+if TYPE_CHECKING:  # not imported at run time: the summaries stay out of every run's code version
+    from ._case_summary import CaseSummary
+
 __all__ = ["REGISTRY", "get_suite", "suite_names", "register_suite", "unregister_suite", "UnknownSuite",
-           "check_suite_name", "is_suite_name"]
+           "check_suite_name", "is_suite_name", "SUMMARIES", "case_summaries"]
 
 BUILTIN: dict[str, str] = {
     "appendix-a": "problems.appendix_a:SUITE",
@@ -31,6 +35,26 @@ BUILTIN: dict[str, str] = {
     "cutest": "problems.s2mpj.cutest_suite:SUITE",
     "spatial": "manipulators.synthesis.spatial_suite:SUITE",
 }
+
+#: built-in suites whose cases a listing reads from their library's catalogue instead of
+#: building them: name -> "module:function", ``function(selection or None) -> list[CaseSummary]``
+SUMMARIES: dict[str, str] = {
+    "hs-all": "problems.s2mpj._summaries:hs_all",
+    "cutest": "problems.s2mpj._summaries:cutest",
+}
+
+
+def case_summaries(name: str, selection: str | None = None) -> list[CaseSummary] | None:
+    """The cases of built-in suite ``name`` (restricted by ``selection``) as
+    `problems._case_summary.CaseSummary` rows, read without building any problem; None if the
+    suite has no catalogue (list its cases instead).  A bad selection raises the suite's own
+    error (`problems.s2mpj.SelectionError`, a ValueError).  Imported by name, like the suites,
+    so that no run's code version includes the summaries."""
+    target = SUMMARIES.get(name)
+    if target is None:
+        return None
+    module, attr = target.split(":")
+    return list(getattr(importlib.import_module(module), attr)(selection))
 
 
 def is_suite_name(name: object) -> bool:
