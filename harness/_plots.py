@@ -205,6 +205,11 @@ def _log_ratios(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list[pa
                      f"(above 0, {int((r > 0).sum())}); bars at ±{cap:.1f}: solved by one only", fontsize=9)
         ax.grid(alpha=0.3, axis="y")
         paths += _save(fig, outdir, f"log_ratio_{a}_vs_{b}")
+    if not paths:  # say why nothing was drawn instead of exiting 0 with no file
+        pairs = ", ".join(f"{a} vs {b}" for a, b in LOG_RATIO_PAIRS)
+        raise HarnessArgumentError(f"no log-ratio profile to draw for {suite}: it needs both solvers of one of the "
+                                   f"pairs {pairs} stored, with a case solved by either; stored solvers: "
+                                   f"{', '.join(sorted(map(str, t.columns))) or 'none'}")
     return paths
 
 

@@ -66,12 +66,27 @@ def check_problem(problem: Problem, derivatives: bool = True) -> list[str]:
     ``derivatives`` (n <= `DERIVATIVE_CHECK_MAX_N`), supplied gradients or Jacobians that
     disagree with central differences.  Shapes: the objective one number, the gradient (n,),
     ``ineq``/``eq`` (m,), their Jacobians (m, n) (also (n,) for one constraint)."""
+    if not isinstance(problem, Problem):
+        raise TypeError(f"check_problem needs a problems.Problem, got {type(problem).__name__} {problem!r:.80}")
     x0, n = np.array(problem.x0, dtype=float), problem.n
     notes: list[str] = []
-    f = _call(problem, "objective", problem.objective, x0)
+    raw: list[Any] = []  # the objective's own return value, besides its conversion to an array
+
+    def objective(x: np.ndarray) -> Any:
+        raw.append(problem.objective(x))
+        return raw[-1]
+
+    f = _call(problem, "objective", objective, x0)
     if f.size != 1:
         raise ProblemInputError(f"problem {problem.name!r}: objective(x0) returned an array of shape {f.shape}; it "
                                 "must return one number")
+    try:
+        float(raw[0])  # what the counting oracle does with it: NumPy >= 2 refuses an array of shape (1,)
+    except (TypeError, ValueError):
+        what = ("None (a missing return?)" if raw[0] is None else
+                f"{type(raw[0]).__name__} of shape {f.shape}")
+        raise ProblemInputError(f"problem {problem.name!r}: objective(x0) returned {what}; it must return one "
+                                "number (a float)") from None
     values: dict[str, np.ndarray] = {"objective": f.reshape(-1)}
     if problem.gradient is not None:
         g = _call(problem, "gradient", problem.gradient, x0)

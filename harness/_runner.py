@@ -327,6 +327,9 @@ def run_suite(
         raise HarnessArgumentError(f"--jobs must be a whole number >= 1, got {jobs!r}")
     if executor == "dask" and not scheduler:
         raise HarnessArgumentError("--executor dask needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
+    if executor != "dask" and scheduler:  # it would be ignored: the runs would go to local workers
+        raise HarnessArgumentError(f"--scheduler {scheduler!r} is for --executor dask; add --executor dask to run "
+                                   f"on that cluster, or leave --scheduler out to run locally")
     if executor == "dask" and str(scheduler).startswith("local") and not re.fullmatch(r"local(:[1-9][0-9]*)?",
                                                                                     str(scheduler)):
         raise HarnessArgumentError(f"--scheduler {scheduler!r}: an in-process cluster is 'local' or 'local:N' with N "

@@ -16,6 +16,7 @@ import pathlib
 import re
 import sys
 import traceback
+from collections.abc import Iterable
 from types import ModuleType
 
 from problems import Case, Problem, Suite, get_suite
@@ -79,9 +80,15 @@ def _suite_from_module(module: ModuleType, path: str) -> Suite:
     if isinstance(suite, Suite):
         check_suite_name(suite.name, f"SUITE.name in {path}")
         return suite
+    if suite is not None:
+        raise ValueError(f"SUITE in {path} is a {type(suite).__name__}, not a problems.Suite")
     problems = getattr(module, "PROBLEMS", None)
     if problems is None:
         raise ValueError(f"suite file {path} defines neither SUITE (a problems.Suite) nor PROBLEMS (a list of Problem)")
+    if isinstance(problems, (str, bytes, Problem)) or not isinstance(problems, Iterable):
+        hint = " (put it in a list: PROBLEMS = [Problem(...)])" if isinstance(problems, Problem) else ""
+        raise ValueError(f"PROBLEMS in {path} must be a non-empty list of problems.Problem, got "
+                         f"{type(problems).__name__} {problems!r:.80}{hint}")
     problems = list(problems)
     bad = [type(p).__name__ for p in problems if not isinstance(p, Problem)]
     if bad or not problems:
@@ -93,7 +100,12 @@ def _suite_from_module(module: ModuleType, path: str) -> Suite:
     if dup:
         raise ValueError(f"PROBLEMS in {path} has several problems named {', '.join(map(repr, dup))}: every "
                          "problem needs its own name (it is the problem's id in the results)")
-    solvers = tuple(getattr(module, "SOLVERS", ()))
+    solvers = getattr(module, "SOLVERS", ())
+    if isinstance(solvers, str) or not isinstance(solvers, (list, tuple)) \
+            or not all(isinstance(s, str) and s.strip() for s in solvers):
+        raise ValueError(f"SOLVERS in {path} must be a list of solver ids (e.g. SOLVERS = [\"sqsd\", "
+                         f"\"scipy-lbfgsb\"]; see python -m harness list solvers), got {solvers!r}")
+    solvers = tuple(solvers)
     cases = [Case(problem=p, problem_id=p.name) for p in problems]
     return Suite(name=name, description=(module.__doc__ or f"problems from {path}").strip().splitlines()[0],
                  build=lambda: cases, solvers=solvers)

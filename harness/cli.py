@@ -101,6 +101,8 @@ def _parser() -> argparse.ArgumentParser:
     _suite_args(ls, required=False)
     ls.add_argument("--brief", action="store_true", help="solvers without their options")
     ls.add_argument("--select", help="with `list problems`: only the problems a selection picks (docs/cutest.md)")
+    ls.add_argument("--solver-module", action="append", default=[], dest="modules",
+                    help="module name or .py file to import first (e.g. one that registers solvers); repeatable")
 
     pl = sub.add_parser("plot", help="figures from stored results (PNG and SVG)")
     _suite_args(pl)
@@ -194,7 +196,7 @@ def _tables_after_run(a: argparse.Namespace) -> None:
     from ._api import render_tables
     from ._reference import has_reference, update_reference
     from ._runner import resolve_suite
-    from .tables._render import RENDERERS, NoTablePlugin
+    from .tables._render import RENDERERS, NoTablePlugin, NoTableRuns
 
     if a.suite and has_reference(a.suite):  # the exact-model analyses the tables read (never computed by them)
         try:
@@ -205,6 +207,9 @@ def _tables_after_run(a: argparse.Namespace) -> None:
             print(f"reference not updated: {type(exc).__name__}: {exc}", file=sys.stderr)
     try:
         tables, paths = render_tables(resolve_suite(a.suite, a.suite_file), a.out)
+    except NoTableRuns as exc:  # the runs are stored; say why there is no table
+        print(f"tables not rendered: {exc}", file=sys.stderr)
+        return
     except NoTablePlugin:
         return
     except Exception as exc:  # noqa: BLE001 - the runs are stored; say why the tables are not
@@ -238,6 +243,13 @@ def _cmd_list(a: argparse.Namespace) -> int:
     from . import _listing
     from ._runner import resolve_suite
 
+    if a.modules:  # solvers registered there are listed too
+        from ._suites import SolverModuleError, import_modules
+
+        try:
+            import_modules(tuple(a.modules))
+        except SolverModuleError as exc:
+            raise HarnessArgumentError(str(exc)) from None
     if a.what == "solvers":
         lines = _listing.list_solvers(verbose=not a.brief)
     elif a.what == "suites":
@@ -257,6 +269,7 @@ def _cmd_plot(a: argparse.Namespace) -> int:
     from .figures import NoFigurePlugin
 
     ref = resolve_suite(a.suite, a.suite_file)
+    _writable_target(os.path.join(a.out, ref.name, "figures"), "--out")  # before any drawing
     try:
         if a.kind in ("thesis", "history") and not a.quiet:
             print(f"plot: drawing {a.kind} figures of {ref.name} ...", file=sys.stderr, flush=True)
@@ -278,6 +291,7 @@ def _cmd_report(a: argparse.Namespace) -> int:
     if out.is_dir() and not suites_under(out):
         raise HarnessArgumentError(f"no stored results under {out}; run a suite first "
                                    f"(python -m harness run --suite hs --out {out})")
+    _writable_target(str(out / "report"), "--out")
     print(write_report(a.out, embed=a.embed, progress=None if a.quiet else sys.stderr))
     return 0
 

@@ -23,7 +23,7 @@ import pandas as pd
 from .._suites import SuiteRef, suite_module
 from ._base import Table
 
-__all__ = ["MARK", "MARK_NOTE", "NoTablePlugin", "plugin_for", "build_tables", "to_markdown", "to_csv",
+__all__ = ["MARK", "MARK_NOTE", "NoTablePlugin", "NoTableRuns", "plugin_for", "build_tables", "to_markdown", "to_csv",
            "to_latex", "to_html", "write_tables", "FORMATS"]
 
 MARK = "⚑"
@@ -33,6 +33,11 @@ FORMATS = {"md": "md", "csv": "csv", "latex": "tex"}
 
 class NoTablePlugin(LookupError):
     """The suite has no table plug-in (yet)."""
+
+
+class NoTableRuns(NoTablePlugin):
+    """Runs are stored, but none with the suite's own settings: every one was made with options
+    given with the solver id (``sqsd[rho=0.5]``), which the tables leave out."""
 
 
 def plugin_for(suite: str, ref: SuiteRef | None = None) -> Callable[..., list[Table]]:
@@ -77,9 +82,20 @@ def build_tables(suite: str, runs: pd.DataFrame, ref: SuiteRef | None = None,
     ``tables(runs, reference)`` also gets the suite's stored reference (`harness._reference`;
     {} when none is stored): tables never run optimizations themselves.
     """
-    if "overrides" in runs.columns:
-        runs = runs[runs["overrides"].fillna("") == ""].reset_index(drop=True)
     plugin = plugin_for(suite, ref)
+    if "overrides" in runs.columns:
+        mine = runs[runs["overrides"].fillna("") == ""].reset_index(drop=True)
+        if mine.empty and not runs.empty:  # a plug-in given no runs draws an empty, malformed table
+            from .._profiles import solver_labels
+
+            labels = sorted(set(solver_labels(runs)))
+            raise NoTableRuns(
+                f"no runs of {suite} with the suite's own settings to tabulate: all {len(runs)} stored runs were "
+                f"made with options given with the solver id ({', '.join(labels[:6])}"
+                f"{', ...' if len(labels) > 6 else ''}; on the command line or in a suite file's SOLVERS), which "
+                "the tables leave out; run the solvers without options for the tables, or see these runs with "
+                "python -m harness plot and report")
+        runs = mine
     takes_reference = len(inspect.signature(plugin).parameters) >= 2
     tables = list(plugin(runs, dict(reference or {})) if takes_reference else plugin(runs))
     for t in tables:
