@@ -107,8 +107,10 @@ def chord_workspace(robot, phi: float, wrench: Any, *, tensions: str = "l1", cho
         poly = ws.polygon()
         if not any(poly.intersection(r.polygon()).area > 0.5 * min(ws.area, r.area) for r in regions):
             regions.append(ws)
-    if not regions:
-        return Workspace.empty(method="chord", regions=[], time=time.perf_counter() - t0)
+    if not regions:  # with an interior point given, an infeasible one has raised above
+        reason = coarse.info.get("reason") or (f"no region of the grid workspace at resolution {resolution} has the "
+                                               "2 points a trace starts from; pass interior= or a finer resolution")
+        return Workspace.empty(method="chord", regions=[], time=time.perf_counter() - t0, reason=reason)
     main = max(regions, key=lambda r: r.area)
     info = dict(main.info)
     info.update(regions=regions, n_regions=len(regions), time=time.perf_counter() - t0,

@@ -52,10 +52,18 @@ def frame_points(cables: int) -> np.ndarray:
 
 
 @functools.cache
-def loads() -> dict[str, np.ndarray]:
-    """Load cases L1-L3 of Table 6.3: name -> [f_x, f_y, tau] (applied at the platform origin)."""
+def _loads() -> dict[str, np.ndarray]:
     t = _table("table_6_3_tdpm_loads")
-    return {r.load: np.array([float(r.f_x), float(r.f_y), float(r.tau)]) for r in t.itertuples()}
+    out = {r.load: np.array([float(r.f_x), float(r.f_y), float(r.tau)]) for r in t.itertuples()}
+    for w in out.values():
+        w.setflags(write=False)  # read once and shared: an in-place change would reach every later caller
+    return out
+
+
+def loads() -> dict[str, np.ndarray]:
+    """Load cases L1-L3 of Table 6.3: name -> [f_x, f_y, tau] (applied at the platform origin).
+    A new dict of read-only arrays: scale a copy (``2 * loads()["L1"]``)."""
+    return dict(_loads())
 
 
 @functools.cache

@@ -62,6 +62,13 @@ def feasible_poses(robot, U: np.ndarray, phi: np.ndarray, wrench: Any, tensions:
     return feas, T
 
 
+def _empty_reason(robot, points: int, where: str) -> str:
+    """Why a grid workspace is empty: what every one of its ``points`` poses failed."""
+    det = f", |det J| >= {robot.det_min:g}" if robot.det_min is not None else ""
+    return (f"none of the {points} grid poses {where} is feasible for this wrench: (6.23) asks for cable tensions "
+            f"within [{robot.t_min:g}, {robot.t_max:g}], cable lengths >= {robot.l_min:g}{det}")
+
+
 def _grid_area(x: np.ndarray, y: np.ndarray, count: int) -> float:
     m = x.size - 1
     return float(count) * ((x[-1] - x[0]) / m) * ((y[-1] - y[0]) / m)
@@ -87,6 +94,10 @@ def constant_orientation_workspace(robot, phi: float, wrench: Any, method: str =
     if not np.isscalar(phi) or not np.isfinite(phi):
         raise ValueError(f"phi must be one finite orientation, got {phi!r}")
     if method == "grid":
+        if chord_options:  # a misspelt option (resolutoin=5) would otherwise be dropped silently
+            raise TypeError(f"workspace(method='grid') got unexpected keyword(s) {', '.join(sorted(chord_options))}; "
+                            "valid: resolution, tensions, keep_tensions (chord, interior and the options of "
+                            "manipulators.workspace.chord_boundary are for method='chord')")
         return _grid_workspace(robot, float(phi), wrench, resolution, tensions, keep_tensions)
     if method == "chord":
         from ._chord import chord_workspace
@@ -108,6 +119,8 @@ def _grid_workspace(robot, phi, wrench, resolution, tensions, keep_tensions):
             "time": time.perf_counter() - t0}
     if T is not None:
         info["tensions"] = T.reshape(X.shape + (robot.n,))
+    if not mask.any():
+        info["reason"] = _empty_reason(robot, int(U.shape[0]), f"at phi = {phi:g}")
     return _workspace_type()(area=_grid_area(x, y, int(mask.sum())), method="grid", mask=mask,
                              grid=(x, y), info=info)
 
@@ -150,5 +163,11 @@ def dextrous_workspace(robot, phi_min: float, phi_max: float, wrench: Any, resol
             "extremes_area": _grid_area(x, y, int(extremes.sum())),
             "slice_areas": np.array([_grid_area(x, y, int(f.sum())) for f in F[:s]]),
             "time": time.perf_counter() - t0}
+    if not mask.any():
+        empty = ~F[:s].any(axis=(1, 2))  # slices with no feasible pose at all
+        info["reason"] = (_empty_reason(robot, int(U.shape[0]), f"at phi = {phis[int(np.argmax(empty))]:g}")
+                          if empty.any() else
+                          f"each of the {s} slices in [{phi_min:g}, {phi_max:g}] has feasible poses, but no grid "
+                          "pose is feasible in all of them")
     return _workspace_type()(area=_grid_area(x, y, int(mask.sum())), method="grid", mask=mask,
                              grid=(x, y), info=info)

@@ -183,3 +183,32 @@ def test_grid_workspace_many_cables_matches_lp(n):
     np.testing.assert_array_equal(feas_lp, ws.mask.flat[idx])
     T = ws.info["tensions"][ws.mask]
     assert T.min() >= robot.t_min - 1e-9 and T.max() <= robot.t_max + 1e-9
+
+
+def test_loads_are_read_only_copies():
+    """An in-place change of a load case is refused instead of reaching every later caller
+    (tdpm_suite included); replacing an entry changes only the caller's dict."""
+    w = loads()["L1"]
+    with pytest.raises(ValueError, match="read-only"):
+        w *= 2
+    mine = loads()
+    mine["L1"] = 2 * mine["L1"]
+    assert loads()["L1"].tolist() == [0.0, -10.0, 0.0]
+
+
+def test_grid_workspace_refuses_unknown_keywords():
+    with pytest.raises(TypeError, match="resolutoin"):
+        thesis_robot(4).workspace(0.0, loads()["L1"], resolutoin=5)
+
+
+def test_empty_workspaces_say_why():
+    """Grid, chord and dextrous workspaces that are empty carry info["reason"], naming the limits."""
+    r = thesis_robot(4)
+    tight = CableRobot(r.frame_points, r.platform_points, t_min=0.0, t_max=1e-6)
+    w = loads()["L1"]
+    for ws in (tight.workspace(0.0, w), tight.workspace(0.0, w, method="chord", resolution=20),
+               tight.dextrous_workspace(-0.1, 0.1, w, resolution=20, slices=3),
+               r.workspace(0.0, [0.0, -1e5, 0.0], resolution=20)):
+        assert ws.area == 0.0
+        assert "none of the" in ws.info["reason"] and "cable tensions within" in ws.info["reason"]
+    assert "reason" not in r.workspace(0.0, w, resolution=20).info
