@@ -81,7 +81,10 @@ class RPR2:
     def __post_init__(self) -> None:
         set_ = lambda k, v: object.__setattr__(self, k, v)  # the dataclass is frozen
         for k in ("xA", "yA", "xB"):
-            v = float(getattr(self, k))
+            try:
+                v = float(getattr(self, k))
+            except (TypeError, ValueError):  # a string or an array: say which coordinate
+                raise ValueError(f"RPR2: {k} must be one number, got {getattr(self, k)!r}") from None
             if not np.isfinite(v):
                 raise ValueError(f"RPR2: {k} must be finite, got {v}")
             set_(k, v)
@@ -124,10 +127,20 @@ class RPR2:
     def forward(self, l1, l2) -> np.ndarray:
         """Forward kinematics: the point above the base line with leg lengths l1, l2.
 
-        Vectorized; NaN where the two circles do not meet above the base line.
+        Vectorized; NaN where the two circles do not meet above the base line, and where a
+        leg length is negative or NaN (no pose has it).
         """
         l1 = np.asarray(l1, dtype=float)
         l2 = np.asarray(l2, dtype=float)
+        try:
+            np.broadcast_shapes(l1.shape, l2.shape)
+        except ValueError:
+            raise ValueError(f"RPR2.forward: leg lengths l1 of shape {l1.shape} and l2 of shape {l2.shape} do not "
+                             "broadcast; give one length per pose in each") from None
+        with np.errstate(invalid="ignore"):
+            bad = ~((l1 >= 0) & (l2 >= 0))  # a negative length squares to a valid one: refuse it
+        if bad.any():
+            l1, l2 = np.where(bad, np.nan, l1), np.where(bad, np.nan, l2)
         x = self.xA + (l1**2 - l2**2 + (self.xB - self.xA) ** 2) / (2.0 * (self.xB - self.xA))
         h2 = l1**2 - (x - self.xA) ** 2
         with np.errstate(invalid="ignore"):

@@ -49,6 +49,7 @@ from ..objectives import (
 from ..prescribed import P1, PRESCRIBED, Prescribed
 from ..rpr2 import RPR2, inverse_condition
 from ..workspace import Workspace
+from ._arguments import chord_length, lookup
 from ._design_cache import DesignCache
 
 __all__ = ["SUITE", "STARTS", "P_START", "design_o", "design_p", "o_problem", "e_problem", "p_problem",
@@ -79,10 +80,32 @@ SETTINGS: dict[str, dict[str, Any]] = {
 SOLVERS = ("sqsd", "lfopc", "etopc", "dynamic-q", "dynamic-q-plus", "scipy-slsqp", "ipopt", "nlopt-mma", "scipy-cobyla")
 
 
+# ------------------------------------------------------------------ arguments
+def _chord(chord: Any, kind: str, where: str) -> float:
+    return chord_length(chord, SETTINGS[kind]["chord"], where)
+
+
+def _start(start: Any, where: str) -> tuple[float, ...]:
+    return lookup(STARTS, start, "start (Table 4.2)", where)
+
+
+def _prescribed(prescribed: Any, where: str) -> Prescribed:
+    """A `Prescribed` workspace, or its name (``"P1"``)."""
+    return prescribed if isinstance(prescribed, Prescribed) else lookup(PRESCRIBED, prescribed,
+                                                                         "prescribed workspace", where)
+
+
+def _design(d: Any, n: int, names: str) -> np.ndarray:
+    d = np.asarray(d, dtype=float)
+    if d.shape != (n,):
+        raise ValueError(f"design vector d must have shape ({n},) = [{names}], got shape {d.shape}")
+    return d
+
+
 # ------------------------------------------------------------------ designs
 def design_o(d) -> RPR2 | None:
     """The O/E-synthesis design (4.13): l_max = 1.5 l_min; None if invalid."""
-    d = np.asarray(d, dtype=float)
+    d = _design(d, 5, "xA, yA, xB, l1_min, l2_min")
     try:
         lo = (d[3], d[4])
         return RPR2(d[0], d[1], d[2], l_min=lo, l_max=(LMAX_RATIO * lo[0], LMAX_RATIO * lo[1]))
@@ -92,7 +115,7 @@ def design_o(d) -> RPR2 | None:
 
 def design_p(d) -> RPR2 | None:
     """The P-synthesis design d = [xA, yA, xB] with l in [4, 7]; None if invalid."""
-    d = np.asarray(d, dtype=float)
+    d = _design(d, 3, "xA, yA, xB")
     try:
         return RPR2(d[0], d[1], d[2], l_min=P_LIMITS[0], l_max=P_LIMITS[1])
     except ValueError:
@@ -120,31 +143,33 @@ class _Workspaces:
 
 
 # ------------------------------------------------------------------ problems
-def o_problem(start: str = "SP1", prescribed: Prescribed = P1, chord: float | None = None) -> Problem:
+def o_problem(start: str = "SP1", prescribed: Prescribed | str = P1, chord: float | None = None) -> Problem:
     """O synthesis (4.8): min 0.5 dW_p + 0.5 dW_c (triangle scheme), unconstrained."""
     s = SETTINGS["o"]
-    ws = _Workspaces(design_o, chord or s["chord"])
+    x0, prescribed = _start(start, "o_problem"), _prescribed(prescribed, "o_problem")
+    ws = _Workspaces(design_o, _chord(chord, "o", "o_problem"))
 
     def f(d):
         _, w = ws(d)
         dwp, dwc = delta_areas_checked(w, prescribed)
         return 0.5 * dwp + 0.5 * dwc
 
-    return Problem(name=f"rpr2-o-{start}", x0=STARTS[start], objective=f, fd=s["fd"], fd_step=s["fd_step"],
+    return Problem(name=f"rpr2-o-{start}", x0=x0, objective=f, fd=s["fd"], fd_step=s["fd_step"],
                    source="Hay 2003, Sec. 4.5, eq. (4.8)", tags=("manipulator", "rpr2", "O"),
                    meta={"prescribed": prescribed.name, "chord": ws.chord, "kind": "o"})
 
 
-def e_problem(start: str = "SP1", prescribed: Prescribed = P1, chord: float | None = None) -> Problem:
+def e_problem(start: str = "SP1", prescribed: Prescribed | str = P1, chord: float | None = None) -> Problem:
     """E synthesis (4.14): min dW_c subject to h = dW_p = 0 (triangle scheme)."""
     s = SETTINGS["e"]
-    ws = _Workspaces(design_o, chord or s["chord"])
+    x0, prescribed = _start(start, "e_problem"), _prescribed(prescribed, "e_problem")
+    ws = _Workspaces(design_o, _chord(chord, "e", "e_problem"))
     memo: DesignCache[tuple[float, float]] = DesignCache(16)  # f and h at one design share the areas
 
     def areas(d) -> tuple[float, float]:
         return memo.get(d, lambda x: delta_areas_checked(ws(x)[1], prescribed))
 
-    return Problem(name=f"rpr2-e-{start}", x0=STARTS[start],
+    return Problem(name=f"rpr2-e-{start}", x0=x0,
                    objective=lambda d: areas(d)[1],
                    eq=lambda d: np.array([areas(d)[0]]),
                    fd=s["fd"], fd_step=s["fd_step"], n_eq=1,
@@ -168,9 +193,9 @@ def _p_objective(d, w: Workspace | None, prescribed: Prescribed) -> float:
 
 def p_problem(prescribed: Prescribed | str = "P1", chord: float | None = None) -> Problem:
     """P synthesis (4.21): min -min kappa^-1 subject to g(d) <= 0 (4.16)."""
-    P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
+    P = _prescribed(prescribed, "p_problem")
     s = SETTINGS["p"]
-    ws = _Workspaces(design_p, chord or s["chord"])
+    ws = _Workspaces(design_p, _chord(chord, "p", "p_problem"))
 
     def f(d):
         return _p_objective(d, None, P)
@@ -195,12 +220,13 @@ def evaluate(kind: str, d, prescribed: Prescribed | str = "P1", chord: float | N
     points) and, if ``exact``, ``f_exact``, ``dwp_exact``, ``dwc_exact``, ``kinv_exact``
     (dense min over the prescribed boundary), ``enclosed`` (exact dW_p <= 1e-4 area(W_p)).
     """
-    P = PRESCRIBED[prescribed] if isinstance(prescribed, str) else prescribed
-    k = kind.lower()
+    P = _prescribed(prescribed, "evaluate")
+    k = kind.lower() if isinstance(kind, str) else kind
     if k not in SETTINGS:
         raise ValueError(f"kind must be one of 'o', 'e', 'p', got {kind!r}")
     build = design_p if k == "p" else design_o
-    m, w = _Workspaces(build, chord or SETTINGS[k]["chord"])(d)
+    d = _design(d, 3 if k == "p" else 5, "xA, yA, xB" if k == "p" else "xA, yA, xB, l1_min, l2_min")
+    m, w = _Workspaces(build, _chord(chord, k, "evaluate"))(d)
     dwp, dwc = delta_areas_checked(w, P)
     out: dict[str, Any] = {"dwp": dwp, "dwc": dwc, "g": enclosure_constraint(w, P, dwp), "h": dwp,
                            "n_b": w.n_boundary, "area": w.area}
