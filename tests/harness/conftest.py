@@ -37,3 +37,19 @@ def builtin_solvers_only():
     yield
     for cls in user:
         register(cls)
+
+
+@pytest.fixture
+def cli_error(capsys):
+    """``cli_error(argv, code=2)``: run the CLI on ``argv``, check it exits ``code`` with a message
+    and no traceback, and return the message's last line."""
+    from harness.cli import main
+
+    def run(argv, code=2):
+        got = main(argv)
+        err = capsys.readouterr().err.strip().splitlines()
+        assert got == code, err
+        assert err and "Traceback" not in "\n".join(err)
+        return err[-1]
+
+    return run

@@ -21,17 +21,10 @@ HERE = pathlib.Path(__file__).parent
 TINY = str(HERE / "tiny_suite.py")
 
 
-def _error(capsys, argv, code=2):
-    got = main(argv)
-    err = capsys.readouterr().err.strip().splitlines()
-    assert got == code, err
-    assert err and "Traceback" not in "\n".join(err)
-    return err[-1]
-
 
 @pytest.mark.parametrize("flag, value", [("--problems", ""), ("--solvers", ""), ("--solvers", ",")])
-def test_an_empty_list_is_refused_not_read_as_everything(tmp_path, capsys, flag, value):
-    line = _error(capsys, ["run", "--suite-file", TINY, flag, value, "--out", str(tmp_path), "--quiet"])
+def test_an_empty_list_is_refused_not_read_as_everything(tmp_path, capsys, flag, value, cli_error):
+    line = cli_error(["run", "--suite-file", TINY, flag, value, "--out", str(tmp_path), "--quiet"])
     assert f"no {flag} given" in line
     assert not Store(tmp_path, "tiny").exists()
 
@@ -41,8 +34,8 @@ def test_an_empty_list_is_refused_not_read_as_everything(tmp_path, capsys, flag,
     ("sqsd[rho=2],sqsd[rho=2.0]", "is given twice"),  # one setting written two ways
     ("sqsd[rho=1,rho=2]", "rho given more than once"),
 ])
-def test_a_repeated_solver_or_option_is_refused(tmp_path, capsys, solvers, says):
-    assert says in _error(capsys, ["run", "--suite-file", TINY, "--solvers", solvers, "--out", str(tmp_path)])
+def test_a_repeated_solver_or_option_is_refused(tmp_path, capsys, solvers, says, cli_error):
+    assert says in cli_error(["run", "--suite-file", TINY, "--solvers", solvers, "--out", str(tmp_path)])
 
 
 def test_option_values_take_their_options_type():
@@ -67,17 +60,17 @@ def test_an_integer_option_written_as_a_float_runs(tmp_path):
     ("def (\n", "solver module {p} raised SyntaxError"),
     (None, "solver module {p} does not exist"),
 ])
-def test_a_bad_solver_module_is_bad_input_named_as_such(tmp_path, capsys, content, says):
+def test_a_bad_solver_module_is_bad_input_named_as_such(tmp_path, capsys, content, says, cli_error):
     p = tmp_path / "mod.py"
     if content is not None:
         p.write_text(content)
-    line = _error(capsys, ["run", "--suite-file", TINY, "--solvers", "sqsd", "--solver-module", str(p),
+    line = cli_error(["run", "--suite-file", TINY, "--solvers", "sqsd", "--solver-module", str(p),
                            "--out", str(tmp_path / "out")])
     assert says.format(p=p) in line
 
 
-def test_an_unknown_solver_module_name(tmp_path, capsys):
-    line = _error(capsys, ["run", "--suite-file", TINY, "--solver-module", "no_such_module_xyz",
+def test_an_unknown_solver_module_name(tmp_path, capsys, cli_error):
+    line = cli_error(["run", "--suite-file", TINY, "--solver-module", "no_such_module_xyz",
                            "--out", str(tmp_path)])
     assert "solver module no_such_module_xyz cannot be imported" in line
 
@@ -129,26 +122,26 @@ def test_table_3_1_shows_not_applicable_runs_as_such_and_leaves_them_out_of_the_
     assert s["problems"] == 0 and s["failed (~)"] == 0 and s["total N^fg"] == 0
 
 
-def test_bad_targets_and_empty_stores_exit_2(tmp_path, capsys):
+def test_bad_targets_and_empty_stores_exit_2(tmp_path, capsys, cli_error):
     (tmp_path / "file").write_text("")
     empty = tmp_path / "empty"
     empty.mkdir()
-    assert "no stored results" in _error(capsys, ["report", "--out", str(empty)])
-    assert "is a file" in _error(capsys, ["report", "--out", str(tmp_path / "file")])
-    assert "hs-all" in _error(capsys, ["reference", "--suite", "hs-all", "--out", str(empty)])
+    assert "no stored results" in cli_error(["report", "--out", str(empty)])
+    assert "is a file" in cli_error(["report", "--out", str(tmp_path / "file")])
+    assert "hs-all" in cli_error(["reference", "--suite", "hs-all", "--out", str(empty)])
     assert not (empty / "hs-all").exists()
     with pytest.raises(SystemExit) as exc:
         main(["run", "--suite", "hs", "--out", ""])
     assert exc.value.code == 2
     harness.run_suite("hs", solvers=["scipy-slsqp"], problems=["hs002"], out=tmp_path / "r", jobs=1, progress=None)
-    assert "is a file" in _error(capsys, ["baseline", "--suite", "hs", "--out", str(tmp_path / "r"),
+    assert "is a file" in cli_error(["baseline", "--suite", "hs", "--out", str(tmp_path / "r"),
                                           "--to", str(tmp_path / "file")])
-    assert "does not exist" in _error(capsys, ["export", "--suite", "hs", "--out", str(tmp_path / "r"),
+    assert "does not exist" in cli_error(["export", "--suite", "hs", "--out", str(tmp_path / "r"),
                                                "--to", str(tmp_path / "nowhere" / "x.h5")])
 
 
-def test_a_malformed_local_scheduler_is_bad_input(tmp_path, capsys):
-    line = _error(capsys, ["run", "--suite-file", TINY, "--executor", "dask", "--scheduler", "local:abc",
+def test_a_malformed_local_scheduler_is_bad_input(tmp_path, capsys, cli_error):
+    line = cli_error(["run", "--suite-file", TINY, "--executor", "dask", "--scheduler", "local:abc",
                            "--out", str(tmp_path)])
     assert "'local' or 'local:N'" in line
 

@@ -19,13 +19,6 @@ ROOT = HERE.parents[1]
 PROBLEM = "Problem(name='bowl', x0=[1.0, 2.0], objective=lambda x: float(x @ x), gradient=lambda x: 2 * x)"
 
 
-def _error(capsys, argv, code=2):
-    got = main(argv)
-    err = capsys.readouterr().err.strip().splitlines()
-    assert got == code, err
-    assert err and "Traceback" not in "\n".join(err)
-    return err[-1]
-
 
 @pytest.mark.parametrize("body, says", [
     (f"PROBLEMS = {PROBLEM}", "put it in a list"),  # was exit 3: TypeError: 'Problem' object is not iterable
@@ -35,10 +28,10 @@ def _error(capsys, argv, code=2):
     (f"SOLVERS = 5\nPROBLEMS = [{PROBLEM}]", "SOLVERS in"),  # was exit 3
     ("SUITE = 'hs'", "not a problems.Suite"),
 ])
-def test_a_suite_file_with_values_of_the_wrong_type_is_bad_input(tmp_path, capsys, body, says):
+def test_a_suite_file_with_values_of_the_wrong_type_is_bad_input(tmp_path, capsys, body, says, cli_error):
     f = tmp_path / "mine.py"
     f.write_text("from problems import Problem\n" + body + "\n")
-    line = _error(capsys, ["run", "--suite-file", str(f), "--out", str(tmp_path / "out"), "--quiet"])
+    line = cli_error(["run", "--suite-file", str(f), "--out", str(tmp_path / "out"), "--quiet"])
     assert says in line and str(f) in line
     assert not Store(tmp_path / "out", "mine").exists()
 
@@ -49,34 +42,34 @@ def test_problems_may_be_any_iterable_of_problems(tmp_path, capsys):
     assert main(["run", "--suite-file", str(f), "--out", str(tmp_path), "--quiet", "--no-table"]) == 0
 
 
-def test_tables_of_a_store_with_only_option_runs_say_why_there_is_none(tmp_path, capsys, mine_file):
+def test_tables_of_a_store_with_only_option_runs_say_why_there_is_none(tmp_path, capsys, mine_file, cli_error):
     out = str(tmp_path / "out")
     assert main(["run", "--suite-file", str(mine_file), "--solvers", "sqsd[rho=0.5]", "--out", out,
                  "--quiet"]) == 0
     err = capsys.readouterr().err
     assert "tables not rendered: no runs of mine with the suite's own settings" in err
     assert not list((tmp_path / "out" / "mine").glob("*.md"))  # no empty, malformed table written
-    line = _error(capsys, ["table", "--suite-file", str(mine_file), "--out", out])
+    line = cli_error(["table", "--suite-file", str(mine_file), "--out", out])
     assert "sqsd[rho=0.5]" in line and "leave out" in line
 
 
-def test_log_ratio_with_no_pair_to_draw_is_bad_input(tmp_path, capsys, mine_file):
+def test_log_ratio_with_no_pair_to_draw_is_bad_input(tmp_path, capsys, mine_file, cli_error):
     out = str(tmp_path)
     assert main(["run", "--suite-file", str(mine_file), "--solvers", "sqsd", "--out", out, "--quiet",
                  "--no-table"]) == 0
-    line = _error(capsys, ["plot", "--suite-file", str(mine_file), "--kind", "log-ratio", "--out", out])
+    line = cli_error(["plot", "--suite-file", str(mine_file), "--kind", "log-ratio", "--out", out])
     assert "no log-ratio profile to draw for mine" in line and "stored solvers: sqsd" in line
 
 
-def test_figure_and_report_targets_that_are_files_are_bad_input(tmp_path, capsys, mine_file):
+def test_figure_and_report_targets_that_are_files_are_bad_input(tmp_path, capsys, mine_file, cli_error):
     out = tmp_path
     assert main(["run", "--suite-file", str(mine_file), "--solvers", "sqsd", "--out", str(out), "--quiet",
                  "--no-table"]) == 0
     (out / "mine" / "figures").write_text("")  # was exit 3: FileExistsError
     (out / "report").write_text("")
-    line = _error(capsys, ["plot", "--suite-file", str(mine_file), "--kind", "profile", "--out", str(out)])
+    line = cli_error(["plot", "--suite-file", str(mine_file), "--kind", "profile", "--out", str(out)])
     assert "figures is a file" in line
-    assert "report is a file" in _error(capsys, ["report", "--out", str(out), "--quiet"])
+    assert "report is a file" in cli_error(["report", "--out", str(out), "--quiet"])
 
 
 def test_the_own_solver_example_of_docs_harness_runs_as_it_says(tmp_path):
@@ -105,9 +98,9 @@ def test_the_own_solver_example_of_docs_harness_runs_as_it_says(tmp_path):
     assert runs.loc[("my-gd", ""), "status"] == "converged"
 
 
-def test_a_scheduler_without_the_dask_executor_is_bad_input(tmp_path, capsys, mine_file):
+def test_a_scheduler_without_the_dask_executor_is_bad_input(tmp_path, capsys, mine_file, cli_error):
     # was: silently ignored, the runs went to local workers
-    line = _error(capsys, ["run", "--suite-file", str(mine_file), "--scheduler", "tcp://127.0.0.1:8786",
+    line = cli_error(["run", "--suite-file", str(mine_file), "--scheduler", "tcp://127.0.0.1:8786",
                            "--out", str(tmp_path), "--quiet"])
     assert "--executor dask" in line
     assert not Store(tmp_path, "mine").exists()
@@ -118,11 +111,11 @@ def test_a_scheduler_without_the_dask_executor_is_bad_input(tmp_path, capsys, mi
     ("lambda x: np.array([[float(x @ x)]])", "ndarray of shape (1, 1)"),
     ("lambda x: None", "returned None"),  # was a NaN warning, then an error row per solver
 ])
-def test_an_objective_that_does_not_return_one_number_is_refused(tmp_path, capsys, objective, says):
+def test_an_objective_that_does_not_return_one_number_is_refused(tmp_path, capsys, objective, says, cli_error):
     f = tmp_path / "mine.py"
     f.write_text(f"import numpy as np\nfrom problems import Problem\n"
                  f"PROBLEMS = [Problem(name='bowl', x0=[1.0, 2.0], objective={objective})]\n")
-    line = _error(capsys, ["run", "--suite-file", str(f), "--out", str(tmp_path / "out"), "--quiet"])
+    line = cli_error(["run", "--suite-file", str(f), "--out", str(tmp_path / "out"), "--quiet"])
     assert line.startswith("error: problem 'bowl': objective(x0) returned") and says in line
 
 
