@@ -19,6 +19,7 @@ points and the bookkeeping:
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -97,9 +98,14 @@ def constant_orientation_workspace(
 ) -> Workspace:
     """``W^C[phi]`` of design ``m`` (eq. 5.14) by the chord method (Section 5.4.2)."""
     t0 = time.perf_counter()
+    ok = not isinstance(phi, (bool, str)) and np.ndim(phi) == 0
+    try:
+        ok = ok and math.isfinite(float(phi))
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise ValueError(f"phi must be one finite orientation (radians), got {phi!r}")
     phi = float(phi)
-    if not np.isfinite(phi):
-        raise ValueError(f"phi must be finite (radians), got {phi}")
     C = lambda U: m.constraints(U, phi, branch=branch)
     if interior is None:
         lo, hi = _bbox_of_legs(m, phi)

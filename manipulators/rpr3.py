@@ -28,6 +28,7 @@ import math
 import numpy as np
 
 from . import _orientation as orient
+from ._checks import finite_rows
 from ._rpr3_kinematics import LEG_SIGN, inverse_condition, jacobian, leg_lengths
 from .workspace import check_closed, open_policy
 
@@ -69,12 +70,14 @@ class RPR3:
 
     def __post_init__(self) -> None:
         vals = (self.xC, self.yC, self.xD, self.xE, self.r)
+        for k, v in zip(("xC", "yC", "xD", "xE", "r"), vals):
+            if not _is_number(v):
+                raise ValueError(f"RPR3: {k} must be a number, got {v!r}")
         if not all(np.isfinite(float(v)) for v in vals):
             raise ValueError(f"RPR3: design [xC, yC, xD, xE, r] must be finite, got {list(vals)}")
         if not float(self.r) > 0.0:
             raise ValueError(f"RPR3: platform half-length r must be > 0, got {self.r}")
-        lmin = tuple(float(v) for v in np.broadcast_to(np.asarray(self.l_min, float), (3,)))
-        lmax = tuple(float(v) for v in np.broadcast_to(np.asarray(self.l_max, float), (3,)))
+        lmin, lmax = _leg_limits(self.l_min, "l_min"), _leg_limits(self.l_max, "l_max")
         if any(not (0.0 <= a < b < np.inf) for a, b in zip(lmin, lmax)):
             raise ValueError(f"RPR3: need 0 <= l_min < l_max < inf per leg, got l_min={lmin}, l_max={lmax}")
         for k, v in (("xC", self.xC), ("yC", self.yC), ("xD", self.xD), ("xE", self.xE), ("r", self.r)):
@@ -236,6 +239,9 @@ class RPR3:
         the legs' allowed arcs is non-empty iff one of the arcs' end angles is allowed
         by all legs).
         """
+        for name, v, least in (("n_grid", n_grid, 1), ("n_refine", n_refine, 0)):
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < least:
+                raise ValueError(f"maximal_constraints: {name} must be an integer >= {least}, got {v!r}")
         U = _points(U)
         legs = self._cosine_legs(U)
 
@@ -283,8 +289,14 @@ class RPR3:
             above / below ``w_ave`` with SciPy's SLSQP, one point at a time (slow; for
             comparison).
         """
-        U = _points(U)
-        w_ref = np.broadcast_to(np.asarray(w_ref, dtype=float), (U.shape[0],))
+        U = _points(U, finite=True)
+        try:
+            w_ref = np.broadcast_to(np.asarray(w_ref, dtype=float), (U.shape[0],))
+        except ValueError:
+            raise ValueError(f"orientation_range: w_ref must be a number or one per point ({U.shape[0]},), "
+                             f"got shape {np.shape(w_ref)}") from None
+        if not np.all(np.isfinite(w_ref)):
+            raise ValueError(f"orientation_range: w_ref must be finite (radians), got {w_ref[~np.isfinite(w_ref)][:3]}")
         if method == "numeric":
             return self._orientation_range_numeric(U, w_ref)
         if method != "closed":
@@ -324,9 +336,9 @@ class RPR3:
 
     def orientation_intervals(self, u) -> list[tuple[float, float]]:
         """All reachable orientation intervals at one point ``u`` (subsets of [-pi, pi])."""
-        u = _points(u)
+        u = _points(u, finite=True)
         if u.shape[0] != 1:
-            raise ValueError("orientation_intervals takes one point")
+            raise ValueError(f"orientation_intervals takes one point (shape (2,)), got {u.shape[0]} points")
         per_leg = []
         for i, (P, Q, alpha) in enumerate(self._cosine_legs(u)):
             per_leg.append(orient.allowed_arcs(P[0], Q[0], alpha[0], self.lmin[i], self.lmax[i]))
@@ -356,7 +368,9 @@ class RPR3:
         Returns disjoint intervals ``(lo, hi)`` of positive length in ``[-pi, pi]``
         (radians, sorted; a set containing phi = +-pi is split there).
         """
-        U = _points(U)
+        U = _points(U, finite=True)
+        if not (_is_number(tol) and math.isfinite(tol)):
+            raise ValueError(f"enclosing_orientations: tol must be a finite leg-length slack, got {tol!r}")
         if branch == "upper":
             if np.any(U[:, 1] < self.yC):
                 return []
@@ -418,13 +432,30 @@ class RPR3:
         return check_closed(ws, on_open, stacklevel=3)
 
 
-def _points(U) -> np.ndarray:
+def _points(U, *, finite: bool = False) -> np.ndarray:
+    """Positions as (k, 2).  ``finite``: refuse NaN / inf rows, for the orientation sets, where
+    a NaN point would silently drop out of the answer (the constraint functions, the chord
+    method's hot path, return NaN rows for NaN points instead)."""
     U = np.asarray(U, dtype=float)
     if U.ndim == 1:
         U = U[None, :]
     if U.ndim != 2 or U.shape[1] != 2:
         raise ValueError(f"positions must have shape (k, 2) or (2,), got {U.shape}")
-    return U
+    return finite_rows(U, "positions") if finite else U
+
+
+def _is_number(v) -> bool:
+    """A real number (bool is not one)."""
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+
+
+def _leg_limits(v, name: str) -> tuple[float, float, float]:
+    """One limit per leg: a number (all three legs) or three numbers."""
+    try:
+        a = np.broadcast_to(np.asarray(v, dtype=float), (3,))
+    except (TypeError, ValueError):
+        raise ValueError(f"RPR3: {name} must be a number or three numbers (one per leg), got {v!r}") from None
+    return tuple(float(x) for x in a)  # type: ignore[return-value]
 
 
 def _orientation_range_args(phi_min, phi_max):

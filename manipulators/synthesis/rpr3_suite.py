@@ -44,6 +44,7 @@ from ..objectives import delta_areas, delta_areas_exact, min_inverse_condition, 
 from ..prescribed import Prescribed, chapter5_workspaces
 from ..rpr3 import RPR3
 from ..workspace import Workspace
+from ._arguments import chord_length, lookup
 from ._design_cache import DesignCache
 
 __all__ = ["SUITE", "SETTINGS", "START_SO", "START_MO", "PRESCRIBED3", "synthesis_problem", "evaluate",
@@ -91,7 +92,7 @@ class _Evaluator:
     def __init__(self, kind: str, P: Prescribed, chord: float | None = None, size: int = 16):
         s = SETTINGS[kind]
         self.kind, self.P, self.s = kind, P, s
-        self.chord = chord or s["chord"]
+        self.chord = chord_length(chord, s["chord"], f"3-RPR {kind.upper()} synthesis")
         self._memo: DesignCache[tuple[RPR3 | None, list[Workspace]]] = DesignCache(size)
         self._wp: Any = None  # W_p as a shapely polygon, made on first use
 
@@ -204,18 +205,16 @@ def synthesis_problem(kind: str, prescribed: str = "P1", chord: float | None = N
     ``min f(d) = -min kappa^-1`` subject to ``g(d) <= 0``; no derivatives (finite
     differences with the thesis's scheme and interval).
     """
-    k = kind.lower()
-    if k not in SETTINGS:
-        raise ValueError(f"kind must be one of {', '.join(SETTINGS)}, got {kind!r}")
-    if prescribed not in PRESCRIBED3:
-        raise ValueError(f"unknown prescribed workspace {prescribed!r}; valid: {', '.join(PRESCRIBED3)}")
+    k = _kind(kind, "rpr3.synthesis_problem")
+    lookup(PRESCRIBED3, prescribed, "prescribed workspace", "rpr3.synthesis_problem")
     s = SETTINGS[k]
     ev = _Evaluator(k, PRESCRIBED3[prescribed], chord)
     ref = _thesis_row(s["table"], prescribed)
+    name = f"rpr3-{k}-{prescribed.lower()}"
     return Problem(
-        name=f"rpr3-{k}-{prescribed.lower()}", x0=s["start"],
-        objective=lambda d: -ev.kinv(d),
-        ineq=lambda d: np.array([ev.parts(d)["g"]]), n_ineq=1,
+        name=name, x0=s["start"],
+        objective=lambda d: -ev.kinv(_vector(d, name)),
+        ineq=lambda d: np.array([ev.parts(_vector(d, name))["g"]]), n_ineq=1,
         fd=s["fd"], fd_step=s["fd_step"],
         f_ref=None if ref is None else -ref["f_star"], x_ref=None if ref is None else ref["d_star"],
         source=f"Hay 2003, Sec. {dict(so='5.6', mo='5.7', d='5.8')[k]}, Table {s['table']}",
@@ -223,6 +222,21 @@ def synthesis_problem(kind: str, prescribed: str = "P1", chord: float | None = N
         meta={"kind": k, "prescribed": prescribed, "chord": ev.chord, "phis": s["phis"], "table": s["table"],
               "thesis": ref},
     )
+
+
+def _kind(kind: Any, where: str) -> str:
+    """The formulation's key in SETTINGS ("so", "mo", "d"; any case)."""
+    key = kind.lower() if isinstance(kind, str) else kind
+    lookup(SETTINGS, key, "synthesis kind", where)
+    return key
+
+
+def _vector(d: Any, name: str) -> Any:
+    """d itself if it has the design's shape (5,).  A wrong shape is a caller's error, refused
+    here; a non-finite d of the right shape is an invalid design, which g penalizes."""
+    if np.shape(d) != (5,):
+        raise ValueError(f"{name}: design d must have 5 entries [xC, yC, xD, xE, r], got shape {np.shape(d)}")
+    return d
 
 
 def _thesis_row(table: str, prescribed: str) -> dict[str, Any] | None:
@@ -258,8 +272,8 @@ def exact_enclosure(kind: str, d, prescribed: str = "P1", n_slices: int = 201,
     """
     import shapely
 
-    s = SETTINGS[kind.lower()]
-    P = PRESCRIBED3[prescribed]
+    s = SETTINGS[_kind(kind, "rpr3.exact_enclosure")]
+    P = lookup(PRESCRIBED3, prescribed, "prescribed workspace", "rpr3.exact_enclosure")
     m = design(d)
     wp = P.polygon(4096)
     if m is None:
@@ -292,6 +306,7 @@ def enclosing_window(
     limits widened by ``tol`` (designs *on* the constraint, found on sampled boundary
     points, miss the exact set by leg excesses ~1e-4).
     """
+    lookup(PRESCRIBED3, prescribed, "prescribed workspace", "rpr3.enclosing_window")
     m = design(d)
     out = {"intervals": [], "slack": float("inf"), "phi_slack": float("nan"), "covers": False if kind else None}
     if m is None:
@@ -314,7 +329,7 @@ def enclosing_window(
 def window_covers(kind: str, intervals) -> bool:
     """Whether the orientations the synthesis requires (SO: 0; MO: the slices; D: the whole
     range) lie in the enclosing set ``intervals`` (radians)."""
-    s = SETTINGS[kind.lower()]
+    s = SETTINGS[_kind(kind, "rpr3.window_covers")]
     need = [(min(s["phis"]), max(s["phis"]))] if s["dextrous"] else [(p, p) for p in s["phis"]]
     return all(any(lo <= a and b <= hi for lo, hi in intervals) for a, b in need)
 
@@ -338,10 +353,8 @@ def evaluate(kind: str, d, prescribed: str = "P1", exact: bool = True) -> dict[s
     angles of the computed boundary points, as the thesis evaluates it), ``g``, ``dwp``
     per workspace, ``n_b``, the workspaces and, if ``exact``, `exact_enclosure`.
     """
-    k = kind.lower()
-    if k not in SETTINGS:
-        raise ValueError(f"kind must be one of {', '.join(SETTINGS)}, got {kind!r}")
-    ev = _Evaluator(k, PRESCRIBED3[prescribed])
+    k = _kind(kind, "rpr3.evaluate")
+    ev = _Evaluator(k, lookup(PRESCRIBED3, prescribed, "prescribed workspace", "rpr3.evaluate"))
     m, wss = ev(d)
     out: dict[str, Any] = {"kinv": ev.kinv(d), **ev.parts(d), "workspaces": wss, "design": m}
     if m is not None and all(w.n_boundary >= 3 for w in wss):
