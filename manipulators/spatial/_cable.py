@@ -29,6 +29,14 @@ __all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "ray_boun
 #: Tension methods: minimum-norm (6.14), constrained l2 (6.17, a QP), l1 (6.19).
 METHODS = ("l1", "l2", "min-norm")
 
+#: Largest grid (resolution^3 cell centres) a workspace is sampled on: its points alone take
+#: 24 bytes each (480 MB here), so a larger one is refused with its size rather than left to
+#: exhaust memory.  Feasibility is tested in chunks of FEASIBILITY_CHUNK points, so the
+#: robots' per-pose arrays (the cable robot's 6 x m structure matrices) stay bounded too.
+MAX_GRID_POINTS = 20_000_000
+FEASIBILITY_CHUNK = 65_536
+_MAX_RESOLUTION = 271  # the largest n with n^3 <= MAX_GRID_POINTS
+
 
 def rotation_matrix(rotation: Any) -> np.ndarray:
     """A 3 x 3 rotation matrix from a matrix or extrinsic x-y-z angles (radians)."""
@@ -60,10 +68,58 @@ def positions_array(positions: Any) -> np.ndarray:
 
 
 def _points(name: str, value: Any) -> np.ndarray:
-    a = np.asarray(value, dtype=float)
+    """A read-only copy of a finite (m, 3) array: the robots are immutable values, so their
+    points cannot change under a workspace or tension computation (nor the caller's array)."""
+    a = np.array(value, dtype=float)
     if a.ndim != 2 or a.shape[1] != 3 or not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be a finite (m, 3) array in metres; got shape {a.shape}")
+    a.flags.writeable = False
     return a
+
+
+def _is_number(v: Any) -> bool:
+    """A real number (bool is not one)."""
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+
+
+def _resolution(resolution: Any) -> int:
+    """Grid cells per axis: an integer >= 1 whose cube is at most MAX_GRID_POINTS."""
+    if isinstance(resolution, (bool, np.bool_)) or not isinstance(resolution, (int, np.integer)) or resolution < 1:
+        raise ValueError(f"resolution must be an integer >= 1 (cells per axis); got {resolution!r}")
+    n = int(resolution)
+    if n**3 > MAX_GRID_POINTS:
+        raise ValueError(f"resolution {n} means {n**3:,} grid points ({24 * n**3 / 1e9:.1f} GB of coordinates); "
+                         f"at most {MAX_GRID_POINTS:,} are sampled (resolution {_MAX_RESOLUTION})")
+    return n
+
+
+def feasible_in_chunks(feasible: Any, points: np.ndarray) -> np.ndarray:
+    """``feasible(points)`` (k,) bool, evaluated FEASIBILITY_CHUNK points at a time (each
+    pose's feasibility is its own, so the chunks change nothing but the memory used)."""
+    out = np.empty(len(points), dtype=bool)
+    for s in range(0, len(points), FEASIBILITY_CHUNK):
+        out[s:s + FEASIBILITY_CHUNK] = feasible(points[s:s + FEASIBILITY_CHUNK])
+    return out
+
+
+def rotation_list(rotations: Any) -> list[Any]:
+    """The orientations of a dextrous workspace: a sequence of 3 x 3 matrices or angle triples.
+
+    One bare orientation is refused, because ``list()`` would read it as something else: a
+    rotation matrix as three angle triples (its rows), an angle triple as three scalars."""
+    if isinstance(rotations, np.ndarray) and rotations.shape == (3, 3) and np.all(np.isfinite(rotations)) \
+            and np.allclose(rotations.T @ rotations, np.eye(3), atol=1e-9):
+        raise ValueError("rotations is one 3 x 3 rotation matrix; pass [R] for one orientation "
+                         "(its rows would be read as three angle triples)")
+    if np.ndim(rotations) == 0:
+        raise ValueError(f"rotations must be a sequence of orientations; got {rotations!r}")
+    rots = list(rotations)
+    if not rots:
+        raise ValueError("rotations must hold at least one orientation")
+    if all(np.ndim(r) == 0 for r in rots):
+        raise ValueError(f"rotations looks like one angle triple {list(rots)}; pass [(alpha, beta, gamma)] "
+                         "for one orientation")
+    return rots
 
 
 @dataclasses.dataclass(frozen=True)
@@ -97,9 +153,7 @@ def grid_points(box: Any, resolution: int) -> tuple[np.ndarray, np.ndarray]:
     b = np.asarray(box, dtype=float)
     if b.shape != (2, 3) or not np.all(np.isfinite(b)) or np.any(b[1] <= b[0]):
         raise ValueError(f"box must be [[x0, y0, z0], [x1, y1, z1]] with x1 > x0 etc.; got {b.tolist()}")
-    if int(resolution) < 1:
-        raise ValueError(f"resolution must be a positive integer; got {resolution}")
-    n = int(resolution)
+    n = _resolution(resolution)
     axes = [b[0, d] + (np.arange(n) + 0.5) * (b[1, d] - b[0, d]) / n for d in range(3)]
     X, Y, Z = np.meshgrid(*axes, indexing="ij")
     return b, np.column_stack([X.ravel(), Y.ravel(), Z.ravel()])
@@ -122,8 +176,10 @@ def ray_reach(feasible: Any, centre: Any, directions: Any, reach: float, tol: fl
     if np.any(norms == 0):
         raise ValueError("directions must be non-zero vectors")
     D = D / norms
-    if not (np.isfinite(reach) and reach > 0):
-        raise ValueError(f"reach must be a positive length; got {reach}")
+    if not (_is_number(reach) and np.isfinite(reach) and reach > 0):
+        raise ValueError(f"reach must be a positive length; got {reach!r}")
+    if not (_is_number(tol) and np.isfinite(tol) and tol > 0):  # tol <= 0: the bisection never ends
+        raise ValueError(f"tol must be a finite length > 0 (the bisection's interval); got {tol!r}")
     if not feasible(c[None])[0]:
         raise ValueError(f"centre {c.tolist()} is not in the workspace")
     lo, hi = np.zeros(len(D)), np.full(len(D), float(reach))
@@ -146,9 +202,12 @@ def ray_boundary(feasible: Any, centre: Any, directions: Any, reach: float, tol:
     return c + s[:, None] * (D / np.linalg.norm(D, axis=1, keepdims=True))
 
 
-@dataclasses.dataclass
+@dataclasses.dataclass(frozen=True)
 class SpatialCableRobot:
-    """A 6-dof cable robot with m >= 7 cables and tension limits t_min <= t_i <= t_max (N)."""
+    """A 6-dof cable robot with m >= 7 cables and tension limits t_min <= t_i <= t_max (N).
+
+    Immutable, with read-only point arrays (copies of the ones given): a changed robot is a
+    new one (``dataclasses.replace``), whose limits are checked again."""
 
     frame_points: Any
     platform_points: Any
@@ -156,15 +215,16 @@ class SpatialCableRobot:
     t_max: float = 100.0
 
     def __post_init__(self) -> None:
-        self.frame_points = _points("frame_points", self.frame_points)
-        self.platform_points = _points("platform_points", self.platform_points)
+        object.__setattr__(self, "frame_points", _points("frame_points", self.frame_points))
+        object.__setattr__(self, "platform_points", _points("platform_points", self.platform_points))
         m = self.frame_points.shape[0]
         if self.platform_points.shape[0] != m:
             raise ValueError(f"frame_points has {m} rows but platform_points has {self.platform_points.shape[0]}")
         if m < 7:
             raise ValueError(f"a redundant spatial cable robot needs m >= 7 cables; got {m}")
-        if not (np.isfinite(self.t_min) and np.isfinite(self.t_max) and 0 <= self.t_min < self.t_max):
-            raise ValueError(f"need finite 0 <= t_min < t_max; got t_min={self.t_min}, t_max={self.t_max}")
+        if not (_is_number(self.t_min) and _is_number(self.t_max) and np.isfinite(self.t_min)
+                and np.isfinite(self.t_max) and 0 <= self.t_min < self.t_max):
+            raise ValueError(f"need finite 0 <= t_min < t_max; got t_min={self.t_min!r}, t_max={self.t_max!r}")
 
     @property
     def m(self) -> int:
@@ -234,20 +294,18 @@ class SpatialCableRobot:
     def workspace(self, rotation: Any, wrench: Any, box: Any, resolution: int = 30) -> SpatialWorkspace:
         """The constant-orientation wrench-feasible workspace on a resolution^3 grid."""
         b, pts = grid_points(box, resolution)
-        mask = self.feasible(pts, rotation, wrench).reshape((int(resolution),) * 3)
+        mask = feasible_in_chunks(lambda P: self.feasible(P, rotation, wrench), pts).reshape((int(resolution),) * 3)
         return SpatialWorkspace(mask, pts, b, int(resolution))
 
     def dextrous_workspace(self, rotations: Any, wrench: Any, box: Any, resolution: int = 30) -> SpatialWorkspace:
         """Positions feasible at every orientation in ``rotations`` (the spatial form of
         the thesis's dextrous workspace, Algorithm 5.1): intersection of the masks."""
-        rots = list(rotations)
-        if not rots:
-            raise ValueError("rotations must hold at least one orientation")
+        rots = rotation_list(rotations)
         b, pts = grid_points(box, resolution)
         ok = np.ones(len(pts), dtype=bool)
         for R in rots:  # only the still-feasible points are re-tested
             idx = np.flatnonzero(ok)
-            ok[idx] = self.feasible(pts[idx], R, wrench)
+            ok[idx] = feasible_in_chunks(lambda P, R=R: self.feasible(P, R, wrench), pts[idx])
         return SpatialWorkspace(ok.reshape((int(resolution),) * 3), pts, b, int(resolution))
 
     def boundary_points(self, rotation: Any, wrench: Any, centre: Any, directions: Any,

@@ -20,15 +20,24 @@ from typing import Any
 
 import numpy as np
 
-from ._cable import SpatialWorkspace, _points, grid_points, positions_array, ray_boundary, rotation_matrix
+from ._cable import (
+    SpatialWorkspace,
+    _is_number,
+    _points,
+    feasible_in_chunks,
+    grid_points,
+    positions_array,
+    ray_boundary,
+    rotation_matrix,
+)
 
 __all__ = ["GoughStewart"]
 
 
-@dataclasses.dataclass
+@dataclasses.dataclass(frozen=True)
 class GoughStewart:
     """Six legs between base points a_i and platform points b_i ((6, 3), metres), with
-    leg-length limits l_min <= |l_i| <= l_max.
+    leg-length limits l_min <= |l_i| <= l_max.  Immutable, as `SpatialCableRobot`.
 
     ``char_length`` (metres) makes the Jacobian dimensionally homogeneous for the
     condition number (the thesis's Section 1 discussion of mixed units): the rotational
@@ -42,17 +51,20 @@ class GoughStewart:
     char_length: float | None = None
 
     def __post_init__(self) -> None:
-        self.base_points = _points("base_points", self.base_points)
-        self.platform_points = _points("platform_points", self.platform_points)
+        object.__setattr__(self, "base_points", _points("base_points", self.base_points))
+        object.__setattr__(self, "platform_points", _points("platform_points", self.platform_points))
         if self.base_points.shape[0] != 6 or self.platform_points.shape[0] != 6:
             raise ValueError("a Gough-Stewart platform has 6 base and 6 platform points; got "
                              f"{self.base_points.shape[0]} and {self.platform_points.shape[0]}")
-        if not (np.isfinite(self.l_min) and np.isfinite(self.l_max) and 0 <= self.l_min < self.l_max):
-            raise ValueError(f"need finite 0 <= l_min < l_max; got l_min={self.l_min}, l_max={self.l_max}")
-        if self.char_length is None:
-            self.char_length = float(np.sqrt(np.mean(np.sum(self.platform_points**2, axis=1))))
-        if not (np.isfinite(self.char_length) and self.char_length > 0):
-            raise ValueError(f"char_length must be a positive length; got {self.char_length}")
+        if not (_is_number(self.l_min) and _is_number(self.l_max) and np.isfinite(self.l_min)
+                and np.isfinite(self.l_max) and 0 <= self.l_min < self.l_max):
+            raise ValueError(f"need finite 0 <= l_min < l_max; got l_min={self.l_min!r}, l_max={self.l_max!r}")
+        cl = self.char_length
+        if cl is None:
+            cl = float(np.sqrt(np.mean(np.sum(self.platform_points**2, axis=1))))
+        if not (_is_number(cl) and np.isfinite(cl) and cl > 0):
+            raise ValueError(f"char_length must be a positive length; got {cl!r}")
+        object.__setattr__(self, "char_length", cl)
 
     def legs(self, positions: Any, rotation: Any) -> np.ndarray:
         """Leg vectors l_i = p + R b_i - a_i, (k, 6, 3), at k positions for one orientation."""
@@ -90,7 +102,7 @@ class GoughStewart:
     def workspace(self, rotation: Any, box: Any, resolution: int = 60) -> SpatialWorkspace:
         """The constant-orientation workspace on a resolution^3 grid of cell centres."""
         b, pts = grid_points(box, resolution)
-        mask = self.feasible(pts, rotation).reshape((int(resolution),) * 3)
+        mask = feasible_in_chunks(lambda P: self.feasible(P, rotation), pts).reshape((int(resolution),) * 3)
         return SpatialWorkspace(mask, pts, b, int(resolution))
 
     def boundary_points(self, rotation: Any, centre: Any, directions: Any, reach: float,
