@@ -10,6 +10,11 @@ from ._blas import pin_blas
 
 pin_blas()
 
-from .cli import main  # noqa: E402 - after pin_blas(), before NumPy loads
+try:
+    from .cli import main  # after pin_blas(), before NumPy loads
 
-sys.exit(main())
+    status = main()
+except KeyboardInterrupt:  # Ctrl-C while pandas & co. still import: one line, not their traceback
+    print("interrupted: finished runs are stored; run again to resume", file=sys.stderr)
+    status = 130  # cli.EXIT_INTERRUPTED (cli itself may be what was interrupted)
+sys.exit(status)
