@@ -19,8 +19,13 @@ def _hexapod() -> GoughStewart:
     return GoughStewart(base, plat, 1.0, 1.6)
 
 
+def _box_corners() -> np.ndarray:
+    """The eight corners of a 2 x 2 x 3 m frame, (8, 3), a fresh array each call."""
+    return np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (0, 3)], float)
+
+
 def _cable_robot() -> SpatialCableRobot:
-    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (0, 3)], float)
+    corners = _box_corners()
     return SpatialCableRobot(corners, 0.1 * np.sign(corners - [0, 0, 1.5]), t_min=1.0, t_max=200.0)
 
 
@@ -101,7 +106,7 @@ def test_the_robots_are_immutable_values():
 
 
 def test_the_callers_arrays_are_copied_not_frozen():
-    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (0, 3)], float)
+    corners = _box_corners()
     robot = SpatialCableRobot(corners, 0.1 * np.sign(corners - [0, 0, 1.5]))
     corners[0, 0] = 5.0  # still the caller's to change, and the robot does not see it
     assert robot.frame_points[0, 0] == -1.0
@@ -109,7 +114,7 @@ def test_the_callers_arrays_are_copied_not_frozen():
 
 @pytest.mark.parametrize("kw", [{"t_min": "1"}, {"t_max": None}, {"t_min": True}])
 def test_tension_limits_must_be_numbers(kw):
-    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (0, 3)], float)
+    corners = _box_corners()
     with pytest.raises(ValueError, match="need finite 0 <= t_min < t_max"):
         SpatialCableRobot(corners, 0.1 * corners, **kw)
 
