@@ -129,9 +129,11 @@ def resolve_suite(suite: str | None = None, suite_file: str | os.PathLike[str] |
 #: docs/cutest.md; the campaign tables judge every run under one limit), 600 s elsewhere, where it
 #: is only a guard against hangs (the solvers' caps end the runs, so the rows do not depend on the
 #: machine).  ``spatial`` gets 1800 s: its SLSQP run on spatial-cable-13 (257 evaluations of ~1.7 s)
-#: took 436 s on the machine that made the campaigns and over 600 s on a slower one.
+#: took 436 s on the machine that made the campaigns and over 600 s on a slower one.  ``rpr3`` and
+#: ``rpr3-spread`` get 1800 s too: Dynamic-Q+ on D P1 took 286 s on an idle 2-core Xeon and 454 s
+#: with a test job beside it, too close to 600 s for a limit that is only a guard.
 DEFAULT_TIMEOUT = 600.0
-SUITE_TIMEOUTS = {"cutest": 10.0, "hs-all": 10.0, "spatial": 1800.0}
+SUITE_TIMEOUTS = {"cutest": 10.0, "hs-all": 10.0, "spatial": 1800.0, "rpr3": 1800.0, "rpr3-spread": 1800.0}
 
 
 def default_timeout(suite: str | None, suite_file: str | os.PathLike[str] | None = None) -> float:
@@ -306,7 +308,7 @@ def run_suite(
     jobs : worker processes (local executor); default all cores.
     timeout : per-run wall-clock limit in seconds (0 or inf: none; negative or NaN is an error);
         default `default_timeout`: 10 s for the campaigns ``cutest`` and ``hs-all``, 1800 s for
-        ``spatial``, else 600 s.
+        ``spatial``, ``rpr3`` and ``rpr3-spread``, else 600 s.
     fresh : run again even the runs already stored under the same key.
     retry_failed : run again every stored error and time-out row. Without it, stored failures
         of the infrastructure (worker killed, Dask worker lost, out of memory) are run again,

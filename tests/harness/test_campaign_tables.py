@@ -116,6 +116,7 @@ def test_campaigns_default_to_their_10_s_limit():
     assert default_timeout("cutest") == default_timeout("hs-all") == 10.0
     assert default_timeout("hs") == DEFAULT_TIMEOUT == 600.0
     assert default_timeout("spatial") == 1800.0  # a guard well above its slowest run (436 s on the EPYC)
+    assert default_timeout("rpr3") == default_timeout("rpr3-spread") == 1800.0  # D P1: up to 454 s
     assert default_timeout(None, "my_suite.py") == DEFAULT_TIMEOUT  # a user's file: no campaign protocol
 
 
