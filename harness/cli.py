@@ -219,7 +219,7 @@ def _tables_after_run(a: argparse.Namespace) -> None:
         if "summary" in t.name:
             print(RENDERERS["md"](t))
     md = [str(p) for p in paths if str(p).endswith(".md")]
-    print("tables (ours beside the thesis's): " + ", ".join(md))
+    print("tables: " + ", ".join(md))  # a user's suite, cutest and hs-all have no thesis column
 
 
 def _cmd_table(a: argparse.Namespace) -> int:
