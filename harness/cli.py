@@ -73,7 +73,8 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
     r.add_argument("--timeout", type=float, default=None,
                    help="per-run wall-clock limit, s (default 10 for the campaigns cutest and hs-all, 1800 for "
-                        "spatial, rpr3 and rpr3-spread, 600 otherwise; 0 or inf: none). Stored time-outs with a smaller limit are run again")
+                        "spatial, rpr3 and rpr3-spread, 600 otherwise; 0 or inf: none). Stored time-outs "
+                        "with a smaller limit are run again")
     r.add_argument("--history-points", type=int, default=None, metavar="N",
                    help="store histories longer than N evaluations thinned to about N (campaigns; "
                         "docs/harness.md, \"Histories\"); default: every evaluation")
