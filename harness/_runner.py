@@ -307,8 +307,8 @@ def run_suite(
     out : results directory; rows go to ``out/<suite>/runs.parquet``.
     jobs : worker processes (local executor); default all cores.
     timeout : per-run wall-clock limit in seconds (0 or inf: none; negative or NaN is an error);
-        default `default_timeout`: 10 s for the campaigns ``cutest`` and ``hs-all``, 1800 s for
-        ``spatial``, ``rpr3`` and ``rpr3-spread``, else 600 s.
+        default `default_timeout`: the suite's entry of `SUITE_TIMEOUTS` (the campaigns ``cutest``
+        and ``hs-all``, and the suites with runs of several minutes), else `DEFAULT_TIMEOUT`.
     fresh : run again even the runs already stored under the same key.
     retry_failed : run again every stored error and time-out row. Without it, stored failures
         of the infrastructure (worker killed, Dask worker lost, out of memory) are run again,

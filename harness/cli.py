@@ -48,6 +48,19 @@ def _writable_target(path: str, what: str) -> None:
         raise HarnessArgumentError(f"{what} {path}: directory {p.parent} does not exist")
 
 
+def _timeout_defaults() -> str:
+    """The per-suite defaults of ``--timeout`` as text, from `_runner.SUITE_TIMEOUTS` and `DEFAULT_TIMEOUT`:
+    "10 for cutest and hs-all, 1800 for spatial, rpr3 and rpr3-spread, 600 otherwise"."""
+    from ._runner import DEFAULT_TIMEOUT, SUITE_TIMEOUTS
+
+    by_value: dict[float, list[str]] = {}
+    for suite, limit in SUITE_TIMEOUTS.items():
+        by_value.setdefault(limit, []).append(suite)
+    parts = [f"{limit:g} for " + (", ".join(names[:-1]) + " and " + names[-1] if len(names) > 1 else names[0])
+             for limit, names in by_value.items()]
+    return ", ".join([*parts, f"{DEFAULT_TIMEOUT:g} otherwise and for --suite-file"])
+
+
 def _suite_args(p: argparse.ArgumentParser, required: bool = True) -> None:
     g = p.add_mutually_exclusive_group(required=required)
     g.add_argument("--suite", help="suite name (see `list suites`)")
@@ -71,10 +84,9 @@ def _parser() -> argparse.ArgumentParser:
                                     "hs-all; docs/cutest.md)")
     r.add_argument("--out", default="results", type=_path_arg, help="results directory (default: results/)")
     r.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
-    r.add_argument("--timeout", type=float, default=None,
-                   help="per-run wall-clock limit, s (default 10 for the campaigns cutest and hs-all, 1800 for "
-                        "spatial, rpr3 and rpr3-spread, 600 otherwise; 0 or inf: none). Stored time-outs "
-                        "with a smaller limit are run again")
+    r.add_argument("--timeout", type=float, default=None, metavar="SEC",
+                   help=f"per-run wall-clock limit, s (default {_timeout_defaults()}; 0 or inf: none). Stored "
+                        "time-outs with a smaller limit are run again")
     r.add_argument("--history-points", type=int, default=None, metavar="N",
                    help="store histories longer than N evaluations thinned to about N (campaigns; "
                         "docs/harness.md, \"Histories\"); default: every evaluation")
