@@ -31,7 +31,7 @@ from ._progress import Progress
 from ._store import Store, retry_keys
 from ._suites import SolverModuleError, SuiteRef, import_modules, ref_for
 
-__all__ = ["run_suite", "RunSummary", "resolve_suite", "default_timeout"]
+__all__ = ["run_suite", "RunSummary", "resolve_suite", "default_timeout", "check_run_options"]
 
 CONSOLIDATE_EVERY = 60.0  # seconds between merges of pending run files into runs.parquet
 HEARTBEAT = 5.0  # seconds: progress is redrawn even while no run finishes
@@ -155,26 +155,33 @@ def _execute(specs: list[RunSpec], executor: str, jobs: int, scheduler: str | No
 
 
 def plan_table(specs: list[RunSpec], todo: list[RunSpec], store: Store) -> pd.DataFrame:
-    """Per solver: planned runs, runs already stored under the current code, runs to do
-    (and how many of them replace a stored row of the same case and solver: from other code
-    or settings, a time-out under a smaller limit, or any with ``fresh``), and an estimate of
-    their run time: the stored wall time of the same case and solver where there is one,
-    else the solver's mean stored wall time per run (the mean, not the median: time-outs
-    make the distribution heavy-tailed).  Sums of run times; divide by the workers for the
-    wall time.  Not-applicable pairs count as done.
+    """Per solver (with its command-line options, ``sqsd[rho=0.5]``, a solver of its own as in
+    the store): planned runs, runs already stored under the current code, runs to do (and how
+    many of them replace a stored row of the same case, solver and command-line options: from
+    other code or settings, a time-out under a smaller limit, or any with ``fresh``), and an
+    estimate of their run time: the stored wall time of the same case, solver and options
+    where there is one, else the solver's mean stored wall time per run (the mean, not the
+    median: time-outs make the distribution heavy-tailed).  Sums of run times; divide by the
+    workers for the wall time.  Not-applicable pairs count as done.
     """
+    from ._profiles import solver_labels
+
     runs = store.load() if store.exists() else pd.DataFrame(columns=["case_id", "solver", "wall_time_s"])
     wall = pd.to_numeric(runs["wall_time_s"], errors="coerce")
-    last = dict(zip(zip(runs["case_id"], runs["solver"]), wall))
+    over = runs["overrides"].fillna("") if "overrides" in runs else pd.Series("", index=runs.index)
+    last = dict(zip(zip(runs["case_id"], runs["solver"], over), wall))
     mean = wall.groupby(runs["solver"]).mean().to_dict()
     todo_keys = {sp.run_key for sp in todo}
+    labels = list(solver_labels(pd.DataFrame({"solver": [sp.solver for sp in specs],
+                                              "overrides": [sp.overrides for sp in specs]})))
     rows = []
-    for solver in dict.fromkeys(sp.solver for sp in specs):
-        mine = [sp for sp in specs if sp.solver == solver]
+    for label in dict.fromkeys(labels):
+        mine = [sp for sp, lab in zip(specs, labels) if lab == label]
         pending = [sp for sp in mine if sp.run_key in todo_keys and sp.not_applicable is None]
-        stale = [sp for sp in pending if (sp.case_id, solver) in last]
-        est = sum(last.get((sp.case_id, solver), mean.get(solver, float("nan"))) for sp in pending)
-        rows.append({"solver": solver, "planned": len(mine), "done": len(mine) - len(pending),
+        stale = [sp for sp in pending if (sp.case_id, sp.solver, sp.overrides) in last]
+        est = sum(last.get((sp.case_id, sp.solver, sp.overrides), mean.get(sp.solver, float("nan")))
+                  for sp in pending)
+        rows.append({"solver": label, "planned": len(mine), "done": len(mine) - len(pending),
                      "to run": len(pending), "replace a stored row": len(stale),
                      "estimated run time [s]": round(float(est), 1)})
     table = pd.DataFrame(rows)
@@ -199,6 +206,26 @@ def _check_timeout(timeout: Any) -> None:
     if isinstance(timeout, bool) or not isinstance(timeout, (int, float, np.integer, np.floating)) \
             or not (timeout >= 0):  # NaN too
         raise HarnessArgumentError(f"--timeout must be a number of seconds >= 0 (0 or inf: no limit), got {timeout!r}")
+
+
+def check_run_options(*, jobs: Any = None, history_points: Any = None, executor: str = "local",
+                      scheduler: str | None = None) -> None:
+    """`HarnessArgumentError` for run options `run_suite` cannot use (``run --dry-run`` checks them too)."""
+    if history_points is not None and not (_whole(history_points) and history_points >= 2):
+        raise HarnessArgumentError(f"--history-points must be a whole number >= 2, got {history_points!r}")
+    if jobs is not None and not (_whole(jobs) and jobs >= 1):
+        raise HarnessArgumentError(f"--jobs must be a whole number >= 1, got {jobs!r}")
+    if executor not in ("local", "dask"):
+        raise HarnessArgumentError(f"unknown executor {executor!r}; valid executors: local, dask")
+    if executor == "dask" and not scheduler:
+        raise HarnessArgumentError("--executor dask needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
+    if executor != "dask" and scheduler:  # it would be ignored: the runs would go to local workers
+        raise HarnessArgumentError(f"--scheduler {scheduler!r} is for --executor dask; add --executor dask to run "
+                                   f"on that cluster, or leave --scheduler out to run locally")
+    if executor == "dask" and str(scheduler).startswith("local") and not re.fullmatch(r"local(:[1-9][0-9]*)?",
+                                                                                    str(scheduler)):
+        raise HarnessArgumentError(f"--scheduler {scheduler!r}: an in-process cluster is 'local' or 'local:N' with N "
+                                   "workers >= 1; a running scheduler is an address such as tcp://127.0.0.1:8786")
 
 
 def _plan(suite: str | None, suite_file: str | os.PathLike[str] | None, solvers: Sequence[str] | None,
@@ -327,19 +354,7 @@ def run_suite(
     if timeout is None:
         timeout = default_timeout(suite, suite_file)
     _check_timeout(timeout)
-    if history_points is not None and not (_whole(history_points) and history_points >= 2):
-        raise HarnessArgumentError(f"--history-points must be a whole number >= 2, got {history_points!r}")
-    if jobs is not None and not (_whole(jobs) and jobs >= 1):
-        raise HarnessArgumentError(f"--jobs must be a whole number >= 1, got {jobs!r}")
-    if executor == "dask" and not scheduler:
-        raise HarnessArgumentError("--executor dask needs --scheduler ADDRESS (e.g. tcp://127.0.0.1:8786)")
-    if executor != "dask" and scheduler:  # it would be ignored: the runs would go to local workers
-        raise HarnessArgumentError(f"--scheduler {scheduler!r} is for --executor dask; add --executor dask to run "
-                                   f"on that cluster, or leave --scheduler out to run locally")
-    if executor == "dask" and str(scheduler).startswith("local") and not re.fullmatch(r"local(:[1-9][0-9]*)?",
-                                                                                    str(scheduler)):
-        raise HarnessArgumentError(f"--scheduler {scheduler!r}: an in-process cluster is 'local' or 'local:N' with N "
-                                   "workers >= 1; a running scheduler is an address such as tcp://127.0.0.1:8786")
+    check_run_options(jobs=jobs, history_points=history_points, executor=executor, scheduler=scheduler)
     ref, specs = _plan(suite, suite_file, solvers, problems, select, timeout, modules)
     store = Store(out, ref.name)
     _check_writable(store.root)

@@ -1,4 +1,4 @@
-"""Command line: ``python -m harness run|table|list|plot|report|compare|baseline``.
+"""Command line: ``python -m harness run|table|list|plot|report|repair|prune|compare|export|reference|baseline``.
 
 A thin layer over the Python API (`harness.run_suite`, `harness.load_results`,
 `harness.render_tables`, ...).  Exit status (docs/harness.md): 0 the harness worked
@@ -12,12 +12,17 @@ a broken plug-in, an unwritable output directory), 130 interrupted.  Errors are 
 from __future__ import annotations
 
 import argparse
+import difflib
 import os
 import pathlib
 import sys
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from ._plan import HarnessArgumentError, name_list
+
+if TYPE_CHECKING:
+    from ._suites import SuiteRef
 
 __all__ = ["main"]
 EXIT_OK, EXIT_REGRESSIONS, EXIT_BAD_INPUT, EXIT_HARNESS_FAILURE, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
@@ -26,6 +31,53 @@ EXIT_OK, EXIT_REGRESSIONS, EXIT_BAD_INPUT, EXIT_HARNESS_FAILURE, EXIT_INTERRUPTE
 def _csv(s: str | None, what: str) -> list[str] | None:
     """A comma-separated option (brackets kept together); an empty one is refused, not "all"."""
     return None if s is None else name_list(s, what)
+
+
+class _Parser(argparse.ArgumentParser):
+    """Bad command lines end like every other bad input (docs/harness.md, "Exit status"): one line
+    ``error: ...`` naming the command and where its help is, exit 2."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]  # never returns
+        self.exit(EXIT_BAD_INPUT, f"error: {self.prog}: {message}; see `{self.prog} --help`\n")
+
+    def unrecognized(self, extra: list[str]) -> None:
+        """Refuse arguments the command does not take, suggesting the option probably meant."""
+        known = [o for a in self._actions for o in a.option_strings]
+        hints = [m[0] for x in extra if x.startswith("-")
+                 for m in [difflib.get_close_matches(x.split("=")[0], known, n=1)] if m]
+        self.error(f"unrecognized arguments: {' '.join(extra)}" + (f" (did you mean {', '.join(hints)}?)"
+                                                                   if hints else ""))
+
+
+def _seconds(s: str) -> float:
+    try:
+        return float(s)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"needs a number of seconds (0 or inf: no limit), got {s!r}") from None
+
+
+def _whole_number(s: str) -> int:
+    try:
+        return int(s)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"needs a whole number, got {s!r}") from None
+
+
+def _number(s: str) -> float:
+    try:
+        return float(s)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"needs a number, got {s!r}") from None
+
+
+def _suite_name(s: str) -> str:
+    """A ``--suite`` argument: a suite name is a directory of results, so '../hs' is bad input, not a path."""
+    from problems._catalog import is_suite_name
+
+    if not is_suite_name(s):
+        raise argparse.ArgumentTypeError(f"suite name {s!r} must be kebab-case (lower-case letters, digits, '-'); "
+                                         "see `python -m harness list suites`")
+    return s
 
 
 def _path_arg(s: str) -> str:
@@ -48,6 +100,9 @@ def _writable_target(path: str, what: str) -> None:
         raise HarnessArgumentError(f"{what} {path}: directory {p.parent} does not exist")
 
 
+OUT_HELP = "results directory, holding <suite>/runs.parquet (default: results)"
+
+
 def _timeout_defaults() -> str:
     """The per-suite defaults of ``--timeout`` as text, from `_runner.SUITE_TIMEOUTS` and `DEFAULT_TIMEOUT`:
     "10 for cutest and hs-all, 1800 for spatial, rpr3 and rpr3-spread, 600 otherwise"."""
@@ -61,33 +116,60 @@ def _timeout_defaults() -> str:
     return ", ".join([*parts, f"{DEFAULT_TIMEOUT:g} otherwise and for --suite-file"])
 
 
+def _directory_target(path: str, what: str) -> None:
+    """Refuse, as bad input, a directory target that is, or lies under, a file (creates nothing)."""
+    p = pathlib.Path(path)
+    for q in [p, *p.parents]:
+        if q.exists():
+            if not q.is_dir():
+                raise HarnessArgumentError(f"{what} {path}: {q} is a file, not a directory")
+            return
+
+
+def _stored_suite_file_runs(ref: SuiteRef, a: argparse.Namespace) -> None:
+    """Before reading the runs of a ``--suite-file``: none stored is bad input naming the command that
+    stores them (`load_results`'s message is about names, listing the built-in suites)."""
+    from ._store import Store
+
+    if a.suite_file and not Store(a.out, ref.name).exists():
+        raise HarnessArgumentError(f"no results of suite file {a.suite_file} (suite {ref.name!r}) under {a.out}; "
+                                   f"run `python -m harness run --suite-file {a.suite_file} --out {a.out}` first")
+
+
 def _suite_args(p: argparse.ArgumentParser, required: bool = True) -> None:
     g = p.add_mutually_exclusive_group(required=required)
-    g.add_argument("--suite", help="suite name (see `list suites`)")
-    g.add_argument("--suite-file", help="a Python file defining SUITE or PROBLEMS (your own problems)")
+    g.add_argument("--suite", metavar="NAME", help="suite name (see `list suites`)")
+    g.add_argument("--suite-file", metavar="FILE.py",
+                   help="a Python file defining SUITE or PROBLEMS (your own problems)")
 
 
-def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(
+def _parser() -> _Parser:
+    from ._reference import REFERENCE_MODULES
+
+    ap = _Parser(
         prog="python -m harness",
         description="Run benchmark suites, store one row per run, and render tables, figures, a report and "
                     "comparisons from the stored runs (docs/harness.md).",
         epilog="Exit status: 0 harness worked (whatever the solvers did), 1 compare found regressions, "
                "2 bad input, 3 harness failure, 130 interrupted.")
-    sub = ap.add_subparsers(dest="command", required=True)
+    sub = ap.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     r = sub.add_parser("run", help="run a suite and store one row per run")
     _suite_args(r)
-    r.add_argument("--solvers", help="comma-separated solver ids, options as id[k=v] (default: the suite's)")
-    r.add_argument("--problems", help="comma-separated problem ids or case ids (default: all)")
-    r.add_argument("--select", help="pick problems by their properties, e.g. \"type=u,n<=100\" (suites cutest, "
-                                    "hs-all; docs/cutest.md)")
-    r.add_argument("--out", default="results", type=_path_arg, help="results directory (default: results/)")
-    r.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
-    r.add_argument("--timeout", type=float, default=None, metavar="SEC",
+    r.add_argument("--solvers", metavar="IDS", help="comma-separated solver ids, options as id[k=v] "
+                                                    "(default: the suite's; see `list solvers`)")
+    r.add_argument("--problems", metavar="IDS", help="comma-separated problem ids or case ids (default: all; "
+                                                     "see `list problems`)")
+    r.add_argument("--select", metavar="EXPR",
+                   help="pick problems by their properties, e.g. \"type=u,n<=100\" (suites cutest, hs-all; "
+                        "docs/cutest.md)")
+    r.add_argument("--out", default="results", type=_path_arg, metavar="DIR", help=OUT_HELP)
+    r.add_argument("--jobs", type=_whole_number, default=None, metavar="N",
+                   help="worker processes, local executor (default: all cores)")
+    r.add_argument("--timeout", type=_seconds, default=None, metavar="SEC",
                    help=f"per-run wall-clock limit, s (default {_timeout_defaults()}; 0 or inf: none). Stored "
                         "time-outs with a smaller limit are run again")
-    r.add_argument("--history-points", type=int, default=None, metavar="N",
+    r.add_argument("--history-points", type=_whole_number, default=None, metavar="N",
                    help="store histories longer than N evaluations thinned to about N (campaigns; "
                         "docs/harness.md, \"Histories\"); default: every evaluation")
     r.add_argument("--fresh", action="store_true", help="re-run runs already stored under the same key")
@@ -97,9 +179,12 @@ def _parser() -> argparse.ArgumentParser:
     r.add_argument("--retry-failed", action="store_true",
                    help="re-run every stored error and time-out row (failures of the infrastructure - a killed "
                         "worker, a lost Dask worker, out of memory - are re-run without it)")
-    r.add_argument("--executor", choices=["local", "dask"], default="local")
-    r.add_argument("--scheduler", help="Dask scheduler address for --executor dask (tcp://host:8786)")
-    r.add_argument("--solver-module", action="append", default=[], dest="modules",
+    r.add_argument("--executor", choices=["local", "dask"], default="local",
+                   help="local worker processes (default) or a Dask cluster (needs --scheduler)")
+    r.add_argument("--scheduler", metavar="ADDR",
+                   help="Dask scheduler address for --executor dask (tcp://host:8786, or local:N for a throw-away "
+                        "LocalCluster of N workers)")
+    r.add_argument("--solver-module", action="append", default=[], dest="modules", metavar="M",
                    help="module name or .py file to import first (e.g. one that registers solvers); repeatable")
     r.add_argument("--quiet", action="store_true", help="no progress display")
     r.add_argument("--no-table", action="store_true",
@@ -107,82 +192,97 @@ def _parser() -> argparse.ArgumentParser:
     t = sub.add_parser("table", help="render a suite's tables from stored results")
     _suite_args(t)
     t.add_argument("--format", choices=["md", "csv", "latex"], default="md", help="format printed (all are written)")
-    t.add_argument("--out", default="results", type=_path_arg)
+    t.add_argument("--out", default="results", type=_path_arg, metavar="DIR", help=OUT_HELP)
 
     ls = sub.add_parser("list", help="list solvers, suites or a suite's problems")
-    ls.add_argument("what", choices=["solvers", "suites", "problems"])
+    ls.add_argument("what", choices=["solvers", "suites", "problems"],
+                    help="solvers: every solver and its options; suites: every suite, its cases and solvers; "
+                         "problems: the cases of --suite or --suite-file")
     _suite_args(ls, required=False)
-    ls.add_argument("--brief", action="store_true", help="solvers without their options")
-    ls.add_argument("--select", help="with `list problems`: only the problems a selection picks (docs/cutest.md)")
-    ls.add_argument("--solver-module", action="append", default=[], dest="modules",
+    ls.add_argument("--brief", action="store_true", help="with `list solvers`: without their options")
+    ls.add_argument("--select", metavar="EXPR",
+                    help="with `list problems`: only the problems a selection picks (docs/cutest.md)")
+    ls.add_argument("--solver-module", action="append", default=[], dest="modules", metavar="M",
                     help="module name or .py file to import first (e.g. one that registers solvers); repeatable")
 
     pl = sub.add_parser("plot", help="figures from stored results (PNG and SVG)")
     _suite_args(pl)
-    pl.add_argument("--kind", required=True, choices=["profile", "data-profile", "history", "thesis", "log-ratio"])
-    pl.add_argument("--problem", help="problem id or case id (history plots; default: every case)")
-    pl.add_argument("--out", default="results", type=_path_arg)
+    pl.add_argument("--kind", required=True, choices=["profile", "data-profile", "history", "thesis", "log-ratio"],
+                    help="performance profiles, data profiles, convergence histories, the suite's thesis "
+                         "figures, or log-ratio profiles of thesis vs established solvers")
+    pl.add_argument("--problem", metavar="ID", help="with --kind history: one problem id or case id (default: "
+                                                    "every case)")
+    pl.add_argument("--out", default="results", type=_path_arg, metavar="DIR",
+                    help=OUT_HELP + "; figures go to DIR/<suite>/figures/")
     pl.add_argument("--quiet", action="store_true", help="no progress lines")
 
     rp = sub.add_parser("report", help="static HTML report of every suite under --out")
-    rp.add_argument("--out", default="results", type=_path_arg)
+    rp.add_argument("--out", default="results", type=_path_arg, metavar="DIR",
+                    help=OUT_HELP + "; the report goes to DIR/report/index.html")
     rp.add_argument("--embed", action="store_true",
                     help="inline the figures: one self-contained HTML file (to mail or attach to a CI run)")
     rp.add_argument("--quiet", action="store_true", help="no progress lines")
 
     rr = sub.add_parser("repair", help="make a suite's unreadable runs.parquet readable again "
                                         "(restores the previous generation, merges pending runs)")
-    rr.add_argument("--suite", required=True)
-    rr.add_argument("--out", default="results", type=_path_arg)
+    rr.add_argument("--suite", required=True, metavar="NAME", type=_suite_name, help="the suite whose store to repair")
+    rr.add_argument("--out", default="results", type=_path_arg, metavar="DIR", help=OUT_HELP)
 
     pr = sub.add_parser("prune", help="remove stored rows a run would not produce now (older code or "
                                       "settings, cases or solvers outside the selection)")
     _suite_args(pr)
     pr.add_argument("--dry-run", action="store_true", help="list what would be removed; change nothing")
-    pr.add_argument("--select", help="the selection the store should hold (suites cutest, hs-all)")
-    pr.add_argument("--solvers", help="comma-separated solver ids to keep (default: the suite's)")
-    pr.add_argument("--out", default="results", type=_path_arg)
+    pr.add_argument("--select", metavar="EXPR", help="the selection the store should hold (suites cutest, hs-all)")
+    pr.add_argument("--solvers", metavar="IDS", help="comma-separated solver ids to keep (default: the suite's)")
+    pr.add_argument("--out", default="results", type=_path_arg, metavar="DIR", help=OUT_HELP)
 
     cp = sub.add_parser("compare", help="per-run changes between two result directories")
-    cp.add_argument("old")
-    cp.add_argument("new")
-    cp.add_argument("--suite", help="only this suite (default: every suite in both)")
-    cp.add_argument("--nfg-tol", type=float, default=0.10, help="relative N^fg increase that is a regression")
-    cp.add_argument("--rel-error-factor", type=float, default=None,
+    cp.add_argument("old", help="the earlier results directory (holding <suite>/runs.parquet, e.g. results)")
+    cp.add_argument("new", help="the later results directory")
+    cp.add_argument("--suite", metavar="NAME", type=_suite_name, help="only this suite (default: every suite in both)")
+    cp.add_argument("--nfg-tol", type=_number, default=0.10, metavar="TOL",
+                    help="relative N^fg increase that is a regression (default: 0.10, i.e. 10%%)")
+    cp.add_argument("--rel-error-factor", type=_number, default=None, metavar="F",
                     help="E^r growing by more than this factor (above 1e-12) is a regression (default: off)")
     cp.add_argument("--all", action="store_true", help="list unchanged runs too")
 
     ex = sub.add_parser("export", help="write a suite's runs for OptiProfiler: an HDF5 archive, or an experiment "
                         "directory its benchmark(load=...) draws profiles from (docs/cutest.md)")
-    ex.add_argument("--suite", required=True)
-    ex.add_argument("--out", default="results", type=_path_arg)
-    ex.add_argument("--to", required=True, type=_path_arg,
+    ex.add_argument("--suite", required=True, metavar="NAME", type=_suite_name,
+                    help="the suite whose stored runs to export")
+    ex.add_argument("--out", default="results", type=_path_arg, metavar="DIR", help=OUT_HELP)
+    ex.add_argument("--to", required=True, type=_path_arg, metavar="PATH",
                     help="a path ending in .h5: the archive alone; otherwise a directory "
                     "in OptiProfiler's experiment layout")
 
     rf = sub.add_parser("reference", help="compute and store what a suite's tables read from exact models "
                         "(rpr2, rpr3) or its best-known points (cutest, hs-all; docs/harness.md)")
-    rf.add_argument("--suite", required=True)
-    rf.add_argument("--out", default="results", type=_path_arg)
+    rf.add_argument("--suite", required=True, metavar="NAME", type=_suite_name,
+                    help=f"a suite with a stored reference: {', '.join(REFERENCE_MODULES)}")
+    rf.add_argument("--out", default="results", type=_path_arg, metavar="DIR", help=OUT_HELP)
     rf.add_argument("--fresh", action="store_true", help="recompute every entry, not only the missing ones "
                     "(best-known points: rebuild from the stored runs alone)")
     rf.add_argument("--verify", action="store_true", help="cutest, hs-all: re-evaluate every stored best-known "
                     "point through the problem's own functions; exit 1 if any f or feasibility disagrees")
 
     b = sub.add_parser("baseline", help="save the deterministic counts of stored runs as a baseline")
-    b.add_argument("--suite", required=True)
-    b.add_argument("--out", default="results", type=_path_arg)
-    b.add_argument("--to", default=os.path.join("results", "baseline"), type=_path_arg)
-    b.add_argument("--solvers", default=None,
+    b.add_argument("--suite", required=True, metavar="NAME", type=_suite_name,
+                   help="the suite whose stored runs to save")
+    b.add_argument("--out", default="results", type=_path_arg, metavar="DIR", help=OUT_HELP)
+    b.add_argument("--to", default=os.path.join("results", "baseline"), type=_path_arg, metavar="DIR",
+                   help="baseline directory: writes DIR/<suite>/counts.csv (default: results/baseline)")
+    b.add_argument("--solvers", default=None, metavar="IDS",
                    help="comma-separated: replace only these solvers' rows, keep the baseline's others")
     return ap
 
 
 def _cmd_run(a: argparse.Namespace) -> int:
-    from ._runner import plan_suite, run_suite
+    from ._runner import check_run_options, plan_suite, run_suite
 
     solvers, problems = _csv(a.solvers, "--solvers"), _csv(a.problems, "--problems")
-    if a.dry_run:
+    if a.dry_run:  # refuse what the run would refuse, before planning (and write nothing)
+        check_run_options(jobs=a.jobs, history_points=a.history_points, executor=a.executor, scheduler=a.scheduler)
+        _directory_target(a.out, "--out")
         plan = plan_suite(a.suite, suite_file=a.suite_file, solvers=solvers, problems=problems, select=a.select,
                           out=a.out, timeout=a.timeout, fresh=a.fresh,
                           retry_failed=a.retry_failed, modules=a.modules)
@@ -241,6 +341,7 @@ def _cmd_table(a: argparse.Namespace) -> int:
     from .tables._render import RENDERERS, NoTablePlugin
 
     ref = resolve_suite(a.suite, a.suite_file)
+    _stored_suite_file_runs(ref, a)
     try:
         tables, paths = render_tables(ref, a.out)
     except NoTablePlugin as exc:
@@ -263,6 +364,13 @@ def _cmd_list(a: argparse.Namespace) -> int:
             import_modules(tuple(a.modules))
         except SolverModuleError as exc:
             raise HarnessArgumentError(str(exc)) from None
+    if a.what != "problems":  # options that would be ignored
+        given = [o for o, v in (("--suite", a.suite), ("--suite-file", a.suite_file), ("--select", a.select)) if v]
+        if given:
+            raise HarnessArgumentError(f"{', '.join(given)} applies to `list problems` only, not `list {a.what}` "
+                                       "(`list suites` shows each suite's solvers)")
+    if a.brief and a.what != "solvers":
+        raise HarnessArgumentError(f"--brief applies to `list solvers` only, not `list {a.what}`")
     if a.what == "solvers":
         lines = _listing.list_solvers(verbose=not a.brief)
     elif a.what == "suites":
@@ -281,7 +389,11 @@ def _cmd_plot(a: argparse.Namespace) -> int:
     from ._runner import resolve_suite
     from .figures import NoFigurePlugin
 
+    if a.problem is not None and a.kind != "history":
+        raise HarnessArgumentError(f"--problem applies to --kind history only; --kind {a.kind} draws every case "
+                                   f"(leave --problem out, or use --kind history --problem {a.problem})")
     ref = resolve_suite(a.suite, a.suite_file)
+    _stored_suite_file_runs(ref, a)
     _writable_target(os.path.join(a.out, ref.name, "figures"), "--out")  # before any drawing
     try:
         if a.kind in ("thesis", "history") and not a.quiet:
@@ -339,6 +451,12 @@ def _cmd_repair(a: argparse.Namespace) -> int:
 def _cmd_compare(a: argparse.Namespace) -> int:
     from ._compare import compare_dirs, format_changes
 
+    for d in (a.old, a.new):  # a suite's own directory instead of the results directory holding it
+        if (pathlib.Path(d) / "runs.parquet").is_file():
+            p = pathlib.Path(d)
+            raise HarnessArgumentError(f"{d} is the directory of suite {p.name!r}; compare takes results "
+                                       f"directories holding <suite>/runs.parquet: compare {p.parent} ... "
+                                       f"--suite {p.name}")
     res = compare_dirs(a.old, a.new, suite=a.suite, nfg_tol=a.nfg_tol, rel_error_factor=a.rel_error_factor)
     print(format_changes(res, show_all=a.all))
     return EXIT_REGRESSIONS if len(res.regressions) else EXIT_OK
@@ -359,6 +477,11 @@ def _cmd_reference(a: argparse.Namespace) -> int:
     from ._reference import REFERENCE_MODULES, update_reference
 
     if a.suite not in REFERENCE_MODULES:
+        from problems import suite_names
+
+        if a.suite not in suite_names():
+            raise HarnessArgumentError(f"unknown suite {a.suite!r}; suites with a stored reference: "
+                                       f"{', '.join(REFERENCE_MODULES)}")
         raise HarnessArgumentError(f"suite {a.suite!r} has no stored reference; suites with one: "
                                    f"{', '.join(REFERENCE_MODULES)}")
     if a.verify:
@@ -429,7 +552,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status."""
     from ._api import NoResults
 
-    args = _parser().parse_args(argv)
+    ap = _parser()
+    args, extra = ap.parse_known_args(argv)
+    if extra:
+        given = list(sys.argv[1:] if argv is None else argv)
+        early = [x for x in extra if x in given[:given.index(args.command)]]
+        if early:  # `python -m harness --quiet run ...`
+            ap.error(f"unrecognized arguments: {' '.join(early)} (a command's options go after it: "
+                     f"python -m harness {args.command} {' '.join(early)} ...)")
+        # refused by the command's own parser, which knows the options meant
+        ap._subparsers._group_actions[0].choices[args.command].unrecognized(extra)  # type: ignore[union-attr]
     previous = _terminate_as_interrupt()
     try:
         return COMMANDS[args.command](args)
@@ -443,7 +575,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stderr.close()
         return EXIT_OK
     except KeyboardInterrupt:
-        print("interrupted: finished runs are stored; run again to resume", file=sys.stderr)
+        print("interrupted: finished runs are stored; run again to resume" if args.command == "run"
+              else f"interrupted: {args.command} did not finish", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Exception as exc:  # noqa: BLE001 - one line, not a traceback; exit 3 tells CI it was the harness
         if os.environ.get("HAYBENCH_TRACEBACK"):

@@ -88,7 +88,7 @@ def test_python_api_arguments_are_checked(tmp_path, kw, says):
 
 def test_python_api_takes_one_comma_separated_string_like_the_command_line(tmp_path):
     plan = plan_suite("hs", solvers="scipy-slsqp,sqsd[rho=0.5]", problems="hs002", out=tmp_path)
-    assert list(plan["solver"]) == ["scipy-slsqp", "sqsd", "all"]
+    assert list(plan["solver"]) == ["scipy-slsqp", "sqsd[rho=0.5]", "all"]
 
 
 def test_dry_run_total_is_unknown_when_a_solvers_time_is(tmp_path):
