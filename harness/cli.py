@@ -561,7 +561,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             ap.error(f"unrecognized arguments: {' '.join(early)} (a command's options go after it: "
                      f"python -m harness {args.command} {' '.join(early)} ...)")
         # refused by the command's own parser, which knows the options meant
-        ap._subparsers._group_actions[0].choices[args.command].unrecognized(extra)  # type: ignore[union-attr]
+        commands = next(a for a in ap._actions if isinstance(a, argparse._SubParsersAction))
+        command_parser = commands.choices[args.command]
+        assert isinstance(command_parser, _Parser)  # every subparser is made by _parser() as a _Parser
+        command_parser.unrecognized(extra)
     previous = _terminate_as_interrupt()
     try:
         return COMMANDS[args.command](args)
