@@ -17,7 +17,7 @@ import os
 import pathlib
 import sys
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ._plan import HarnessArgumentError, name_list
 
@@ -49,25 +49,19 @@ class _Parser(argparse.ArgumentParser):
                                                                    if hints else ""))
 
 
-def _seconds(s: str) -> float:
-    try:
-        return float(s)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"needs a number of seconds (0 or inf: no limit), got {s!r}") from None
+def _typed(convert: type, needs: str) -> Any:
+    """An argparse ``type=``: ``convert(s)``, or a one-line error saying what the option ``needs``."""
+    def parse(s: str) -> Any:
+        try:
+            return convert(s)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"needs {needs}, got {s!r}") from None
+    return parse
 
 
-def _whole_number(s: str) -> int:
-    try:
-        return int(s)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"needs a whole number, got {s!r}") from None
-
-
-def _number(s: str) -> float:
-    try:
-        return float(s)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"needs a number, got {s!r}") from None
+_seconds = _typed(float, "a number of seconds (0 or inf: no limit)")
+_whole_number = _typed(int, "a whole number")
+_number = _typed(float, "a number")
 
 
 def _suite_name(s: str) -> str:
