@@ -9,6 +9,7 @@ options of the finished run, so a key computed before a run equals the stored on
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import hashlib
 import inspect
 import json
@@ -148,17 +149,56 @@ def normalized_options(cls: Any, opts: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+#: Valid ids an unknown-id message lists at most (the rest are counted, `list problems` shows them).
+MAX_LISTED_IDS = 20
+
+
+def _listed(ids: list[str]) -> str:
+    """``ids`` comma-separated, at most `MAX_LISTED_IDS` of them and a count of the rest."""
+    shown = ", ".join(ids[:MAX_LISTED_IDS])
+    rest = len(ids) - MAX_LISTED_IDS
+    if rest <= 0:
+        return shown
+    return (f"{shown} ... and {rest} more "
+            "(`python -m harness list problems` with the same --suite or --suite-file lists them)")
+
+
+def _did_you_mean(text: str, ids: list[str], problem_of: dict[str, str]) -> str:
+    """`` (did you mean a, b?)`` for ``text``, or "" when nothing is close.
+
+    A case id whose problem exists suggests that problem's cases first (``hs002/n=3/x0``:
+    ``hs002/n=2/x0``), then the ids `difflib.get_close_matches` finds."""
+    same = [c for c in ids if "/" in text and problem_of.get(c) == text.split("/", 1)[0]]
+    order = {c: i for i, c in enumerate(ids)}
+    near = difflib.get_close_matches(text, ids, n=len(ids), cutoff=0.7)
+    # equally close ids in the suite's order (get_close_matches puts the larger string first)
+    near.sort(key=lambda c: (-difflib.SequenceMatcher(None, text, c).ratio(), order[c]))
+    close = list(dict.fromkeys(same[:3] + near))[:3]
+    return f" (did you mean {', '.join(close)}?)" if close else ""
+
+
 def select_cases(suite: Suite, problems: list[str] | None) -> list[Case]:
-    """Cases whose problem id (or full case id) is in ``problems`` (all if None)."""
+    """Cases whose problem id (or full case id) is in ``problems`` (all if None).
+
+    An unknown id is refused (`HarnessArgumentError`) with the valid ids in the form it was
+    given: case ids for one that looks like a case id (it contains "/"), problem ids
+    otherwise, with the closest ones as a "did you mean"."""
     cases = list(suite.cases())
     if not problems:
         return cases
-    valid = set(suite.problem_ids()) | {c.case_id for c in cases}
+    problem_ids = list(suite.problem_ids())
+    case_ids = [c.case_id for c in cases]
+    valid = set(problem_ids) | set(case_ids)
     unknown = [p for p in problems if p not in valid]
     if unknown:
-        raise HarnessArgumentError(
-            f"unknown problem(s) {', '.join(unknown)} in suite {suite.name}; valid problems: "
-            f"{', '.join(suite.problem_ids())}")
+        problem_of = {c.case_id: c.problem_id for c in cases}
+        parts = []
+        for what, ids, given in (("problem(s)", problem_ids, [p for p in unknown if "/" not in p]),
+                                 ("case id(s)", case_ids, [p for p in unknown if "/" in p])):
+            if given:
+                named = ", ".join(p + _did_you_mean(p, ids, problem_of) for p in given)
+                parts.append(f"unknown {what} {named} in suite {suite.name}; valid {what[:-3]}s: {_listed(ids)}")
+        raise HarnessArgumentError("; ".join(parts))
     want = set(problems)
     return [c for c in cases if c.problem_id in want or c.case_id in want]
 

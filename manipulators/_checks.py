@@ -1,4 +1,5 @@
-"""Input checks shared by every manipulator: poses and positions must be finite.
+"""Input checks shared by every manipulator: poses and positions must be finite, and
+scalar arguments must be numbers (`is_number`, `is_integer`; a bool is neither).
 
 A NaN or infinite pose is bad input. It is refused where it enters, with the offending
 rows named, because downstream it would read as something else: a singular pose
@@ -11,7 +12,22 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["finite_rows", "planar_poses"]
+__all__ = ["finite_rows", "planar_poses", "is_number", "is_integer"]
+
+
+def is_number(v: Any) -> bool:
+    """A real number: int, float, NumPy integer or floating (finite or not).
+
+    A bool (also ``np.bool_``) is not one, though Python counts it as an int: ``True`` for a
+    length or a tolerance is a mistake, not 1.  Neither is a string, an array (even 0-d) or
+    a complex number.
+    """
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+
+
+def is_integer(v: Any) -> bool:
+    """An integer: int or NumPy integer, not a bool (nor ``np.bool_``), nor an integral float."""
+    return isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_))
 
 
 def finite_rows(a: np.ndarray, what: str, show: Any = None) -> np.ndarray:

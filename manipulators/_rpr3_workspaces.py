@@ -98,7 +98,8 @@ def constant_orientation_workspace(
 ) -> Workspace:
     """``W^C[phi]`` of design ``m`` (eq. 5.14) by the chord method (Section 5.4.2)."""
     t0 = time.perf_counter()
-    ok = not isinstance(phi, (bool, str)) and np.ndim(phi) == 0
+    # a number or a 0-d array of one; a bool of either kind is none (as in `_checks.is_number`)
+    ok = not isinstance(phi, (bool, np.bool_, str)) and np.ndim(phi) == 0
     try:
         ok = ok and math.isfinite(float(phi))
     except (TypeError, ValueError):

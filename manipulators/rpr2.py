@@ -28,7 +28,26 @@ REFINE = 3  # halvings of the chord when a trace misses the radiating point (`RP
 
 def inverse_condition(xA: float, yA: float, xB: float, U) -> np.ndarray:
     """kappa^-1 = det J = (y - yA)(xB - xA) / (l1 l2) (eq. 4.23, D.15) for any base
-    (also xA == xB, where it is 0); NaN at the pivots."""
+    (also xA == xB, where it is 0); NaN at the pivots.
+
+    The value is signed.  J's rows are the legs' unit vectors e1 = (u - A) / l1 and
+    e2 = (u - B) / l2 (`RPR2.jacobian`), so det J = e1 x e2 = sin of the angle from leg 1 to
+    leg 2.  Its magnitude is the inverse condition number proper (in [0, 1]; with W = I/2
+    (4.20) the weighted Frobenius condition number of J is 1 / |det J|), 0 where the legs
+    are collinear (on the base line y = yA: a singular pose).  Its sign tells the assembly
+    mode, i.e. the side of the base line: > 0 for y > yA with B right of A (xB > xA), the
+    half-plane the workspace keeps (``y >= yA`` is one of its constraints); < 0 below the
+    base line (the mirrored mode) or with B left of A.
+
+    The objectives use the signed value, not its absolute value: `min_inverse_condition`
+    (`manipulators.objectives`) takes the signed minimum over the prescribed boundary (NaN
+    counts as -inf), suite rpr2's P objective is minus that minimum, and the exact P problem
+    (`synthesis.rpr2_exact`) constrains kappa^-1 - t >= 0 with the signed value.  A prescribed
+    workspace reaching below the base line, or a design with xB < xA, therefore scores
+    kappa^-1 < 0, worse than any design with the workspace above it, rather than being
+    rewarded for its mirror image.  (The 3-RPR's kappa^-1, `manipulators._rpr3_kinematics`,
+    is unsigned: 3 |det J| / (||J||_F ||adj J||_F).)
+    """
     U = as_points(U, "U")
     finite_rows(U, "positions U")
     dy = U[:, 1] - yA
@@ -159,7 +178,10 @@ class RPR2:
         return J
 
     def inverse_condition(self, U) -> np.ndarray:
-        """kappa^-1 = det J = (y - yA)(xB - xA) / (l1 l2) (eq. 4.23, D.15), W = I/2 (4.20)."""
+        """kappa^-1 = det J = (y - yA)(xB - xA) / (l1 l2) (eq. 4.23, D.15), W = I/2 (4.20).
+
+        Signed: > 0 above the base line (for xB > xA), < 0 below it, 0 on it; see the module
+        function `inverse_condition` for what the sign means and how the objectives use it."""
         return inverse_condition(self.xA, self.yA, self.xB, U)
 
     # --------------------------------------------------------------- workspace

@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from . import _orientation as orient
-from ._checks import finite_rows
+from ._checks import finite_rows, is_integer, is_number
 from ._rpr3_kinematics import LEG_SIGN, inverse_condition, jacobian, leg_lengths
 from .workspace import check_closed, open_policy
 
@@ -71,7 +71,7 @@ class RPR3:
     def __post_init__(self) -> None:
         vals = (self.xC, self.yC, self.xD, self.xE, self.r)
         for k, v in zip(("xC", "yC", "xD", "xE", "r"), vals):
-            if not _is_number(v):
+            if not is_number(v):
                 raise ValueError(f"RPR3: {k} must be a number, got {v!r}")
         if not all(np.isfinite(float(v)) for v in vals):
             raise ValueError(f"RPR3: design [xC, yC, xD, xE, r] must be finite, got {list(vals)}")
@@ -240,7 +240,7 @@ class RPR3:
         by all legs).
         """
         for name, v, least in (("n_grid", n_grid, 1), ("n_refine", n_refine, 0)):
-            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < least:
+            if not is_integer(v) or v < least:
                 raise ValueError(f"maximal_constraints: {name} must be an integer >= {least}, got {v!r}")
         U = _points(U)
         legs = self._cosine_legs(U)
@@ -369,7 +369,7 @@ class RPR3:
         (radians, sorted; a set containing phi = +-pi is split there).
         """
         U = _points(U, finite=True)
-        if not (_is_number(tol) and math.isfinite(tol)):
+        if not (is_number(tol) and math.isfinite(tol)):
             raise ValueError(f"enclosing_orientations: tol must be a finite leg-length slack, got {tol!r}")
         if branch == "upper":
             if np.any(U[:, 1] < self.yC):
@@ -442,11 +442,6 @@ def _points(U, *, finite: bool = False) -> np.ndarray:
     if U.ndim != 2 or U.shape[1] != 2:
         raise ValueError(f"positions must have shape (k, 2) or (2,), got {U.shape}")
     return finite_rows(U, "positions") if finite else U
-
-
-def _is_number(v) -> bool:
-    """A real number (bool is not one)."""
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
 
 
 def _leg_limits(v, name: str) -> tuple[float, float, float]:

@@ -26,7 +26,8 @@ from typing import Any
 import numpy as np
 
 from ._finite_differences import fd_gradient, fd_jacobian
-from ._problem import Problem, ProblemError
+from ._numbers import is_number
+from ._problem import Problem, ProblemError, _real_array, _shown, _worst
 
 __all__ = ["Oracle", "OraclePoint", "BudgetExhausted", "Counts"]
 
@@ -64,6 +65,7 @@ def _read_only(a: np.ndarray) -> np.ndarray:
 _EMPTY = _read_only(np.zeros(0))
 _max = np.maximum.reduce  # ndarray.max without its Python-level wrapper (same reduction)
 _F64 = np.dtype(float)
+_FLOATS = frozenset({float, np.float64})  # objective values converted without checks
 _JAC_KEY = {"ineq": "ineq_jac", "eq": "eq_jac"}
 _isfinite, _isnan = math.isfinite, math.isnan
 
@@ -230,19 +232,47 @@ class Oracle:
             if ("ineq" in cache or not m_ineq) and ("eq" in cache or not m_eq):
                 v = cache.get("bviol", 0.0)
                 if m_ineq:
-                    v = max(v, _max_or_zero(cache["ineq"]))
+                    v = _worst(v, _max_or_zero(cache["ineq"]))
                 if m_eq:
-                    v = max(v, _abs_max_or_zero(cache["eq"]))
+                    v = _worst(v, _abs_max_or_zero(cache["eq"]))
                 row[2] = v
         if row[1] == row[1] and row[2] == row[2]:  # both known: nothing left to complete
             self._unfilled.pop(cache.get("hist_index", -1), None)
 
     def _call_f(self, x: np.ndarray) -> float:
         t = time.perf_counter()
-        val = float(self.problem.objective(x))
+        f = self.problem.objective(x)
+        val = float(f) if type(f) in _FLOATS else self._number(f)
         self.time_in_evals += time.perf_counter() - t
         self.nf += 1
         return val
+
+    def _number(self, f: Any) -> float:
+        """The objective's value ``f``: a number or a 0-d array (as for ``float(f)``), else `ProblemError`."""
+        if is_number(f):
+            return float(f)
+        a = _real_array(f)
+        if a is None or a.ndim != 0:
+            raise ProblemError(f"{self.name}: objective returned {_shown(f)}; expected one number "
+                               "(a float, a NumPy scalar or a 0-d array)")
+        return float(a)
+
+    def _values(self, what: str, value: Any) -> np.ndarray:
+        """``value`` returned by ``what`` as a float array, else `ProblemError` naming ``what``."""
+        a = _real_array(value)
+        if a is None:
+            raise ProblemError(f"{self.name}: {what} returned {_shown(value)}; expected numbers")
+        return a
+
+    def _jacobian(self, which: str, J: Any) -> np.ndarray:
+        """The Jacobian ``J`` of ``which`` as an (m, n) float array (a single constraint's may be (n,))."""
+        m, n = self._m[which], self._n
+        J = self._values(f"{which}_jacobian", J)
+        if J.shape == (m, n) or (m == 1 and J.shape == (n,)):
+            return J.reshape(m, n)
+        hint = f" or ({n},)" if m == 1 else " (it returned the transpose)" if J.shape == (n, m) else ""
+        raise ProblemError(f"{self.name}: {which}_jacobian returned shape {J.shape}; "
+                           f"expected (m, n) = ({m}, {n}){hint}")
 
     # The `_..._at(x)` methods evaluate at the current point ``x`` (already entered) and
     # return the cached value: read-only arrays, copied by the public methods below.
@@ -260,12 +290,12 @@ class Oracle:
             if self._gradient is not None:
                 g = self._gradient(x)
                 if not (type(g) is np.ndarray and g.dtype is _F64 and g.ndim == 1):
-                    g = np.asarray(g, dtype=float).reshape(-1)
+                    g = self._values("gradient", g).reshape(-1)
             else:
                 f0 = self._cache.get("f")
                 if f0 is None and p.fd == "forward":
                     f0 = self._f_at(x)
-                g, evals = fd_gradient(p.objective, x, f0, p.fd_step, p.fd)
+                g, evals = fd_gradient(p.objective, x, f0, p.fd_step, p.fd, name=f"{self.name}: objective")
                 self.nf += evals
             self.time_in_evals += time.perf_counter() - t
             if g.size != self._n:
@@ -284,7 +314,7 @@ class Oracle:
             t = time.perf_counter()
             c = fun(x)
             if not (type(c) is np.ndarray and c.dtype is _F64 and c.ndim == 1):
-                c = np.asarray(c, dtype=float).reshape(-1)
+                c = self._values(which, c).reshape(-1)
             self.time_in_evals += time.perf_counter() - t
             if c.size != m:
                 raise ProblemError(f"{self.name}: {which} returned {c.size} values, expected {m}")
@@ -304,10 +334,10 @@ class Oracle:
             if jac is not None:
                 J = jac(x)
                 if not (type(J) is np.ndarray and J.dtype is _F64 and J.shape == (m, self._n)):
-                    J = np.asarray(J, dtype=float).reshape(m, self._n)
+                    J = self._jacobian(which, J)
             else:
                 c0 = self._constraint_at(which, x) if p.fd == "forward" else None
-                J, evals = fd_jacobian(getattr(p, which), x, c0, p.fd_step, p.fd)
+                J, evals = fd_jacobian(self._funs[which], x, c0, p.fd_step, p.fd, m=m, name=f"{self.name}: {which}")
                 self.nc += evals
             self.time_in_evals += time.perf_counter() - t
             self.nj += 1

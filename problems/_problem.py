@@ -14,6 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from ._numbers import is_finite_number, is_integer
+
 __all__ = ["Problem", "ProblemError"]
 
 FD_SCHEMES = ("forward", "central")
@@ -23,11 +25,31 @@ class ProblemError(ValueError):
     """A problem definition or an input point is invalid."""
 
 
-def _as_vector(name: str, value: Any, n: int | None = None) -> np.ndarray:
+def _real_array(value: Any) -> np.ndarray | None:
+    """``value`` as a float array, or None unless it is real numbers (None, str, bool, complex are not)."""
     try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ProblemError(f"{name} must be a vector of numbers, got {value!r}") from exc
+        a = np.asarray(value)
+    except (TypeError, ValueError):  # ragged nesting
+        return None
+    return a.astype(float, copy=False) if a.dtype.kind in "iuf" else None
+
+
+def _shown(value: Any) -> str:
+    """``value``, shortly, for an error message."""
+    if isinstance(value, np.ndarray):
+        return f"an array of shape {value.shape} and dtype {value.dtype}"
+    return f"{value!r:.60}"
+
+
+def _worst(a: float, b: float) -> float:
+    """``max(a, b)`` (the same float), but NaN if either is NaN: a NaN constraint value is violated."""
+    return b if b > a or b != b else a
+
+
+def _as_vector(name: str, value: Any, n: int | None = None) -> np.ndarray:
+    arr = _real_array(value)
+    if arr is None:
+        raise ProblemError(f"{name} must be a vector of numbers, got {_shown(value)}")
     if arr.ndim == 0 and n is not None:
         arr = np.full(n, float(arr))
     if arr.ndim != 1:
@@ -100,7 +122,7 @@ class Problem:
         set_ = lambda k, v: object.__setattr__(self, k, v)  # the dataclass is frozen
         if not isinstance(self.name, str) or not self.name:
             raise ProblemError("Problem.name must be a non-empty string")
-        x0 = _as_vector("x0", self.x0)
+        x0 = _as_vector(f"{self.name}: x0", self.x0)
         if x0.size == 0:
             raise ProblemError(f"{self.name}: x0 is empty")
         if not np.all(np.isfinite(x0)):
@@ -117,8 +139,8 @@ class Problem:
             raise ProblemError(f"{self.name}: ineq_jacobian given without ineq")
         if self.eq is None and self.eq_jacobian is not None:
             raise ProblemError(f"{self.name}: eq_jacobian given without eq")
-        lo = np.full(n, -np.inf) if self.lower is None else _as_vector("lower", self.lower, n)
-        up = np.full(n, np.inf) if self.upper is None else _as_vector("upper", self.upper, n)
+        lo = np.full(n, -np.inf) if self.lower is None else _as_vector(f"{self.name}: lower", self.lower, n)
+        up = np.full(n, np.inf) if self.upper is None else _as_vector(f"{self.name}: upper", self.upper, n)
         if np.any(np.isnan(lo)) or np.any(np.isnan(up)):
             raise ProblemError(f"{self.name}: bounds contain NaN")
         if np.any(lo > up):
@@ -127,19 +149,34 @@ class Problem:
         set_("lower", lo)
         set_("upper", up)
         if self.x_ref is not None:
-            set_("x_ref", _as_vector("x_ref", self.x_ref, n))
+            x_ref = _as_vector(f"{self.name}: x_ref", self.x_ref, n)
+            if not np.all(np.isfinite(x_ref)):
+                raise ProblemError(f"{self.name}: x_ref contains NaN or inf: {x_ref}")
+            set_("x_ref", x_ref)
         if self.f_ref is not None:
+            if not is_finite_number(self.f_ref):
+                raise ProblemError(f"{self.name}: f_ref must be a finite number or None, got {self.f_ref!r}")
             set_("f_ref", float(self.f_ref))
         if self.fd not in FD_SCHEMES:
             raise ProblemError(f"{self.name}: fd must be one of {FD_SCHEMES}, got {self.fd!r}")
-        if not (np.isfinite(self.fd_step) and self.fd_step > 0):
+        if not (is_finite_number(self.fd_step) and self.fd_step > 0):
             raise ProblemError(f"{self.name}: fd_step must be a positive number, got {self.fd_step!r}")
         set_("tags", tuple(self.tags))
-        # Constraint counts: evaluate once at x0 when not given (cheap, uncounted set-up).
-        if self.n_ineq is None:
-            set_("n_ineq", 0 if self.ineq is None else int(np.atleast_1d(self.ineq(x0)).size))
-        if self.n_eq is None:
-            set_("n_eq", 0 if self.eq is None else int(np.atleast_1d(self.eq(x0)).size))
+        for which in ("ineq", "eq"):  # constraint counts: when not given, evaluated once at x0 (uncounted set-up)
+            fun, count = getattr(self, which), getattr(self, f"n_{which}")
+            if count is None and fun is None:
+                count = 0
+            elif count is None:
+                c = fun(x0)
+                values = _real_array(c)
+                if values is None:
+                    raise ProblemError(f"{self.name}: {which}(x0) returned {_shown(c)}; expected a vector of numbers")
+                count = values.size
+            elif not (is_integer(count) and count >= 0):
+                raise ProblemError(f"{self.name}: n_{which} must be a non-negative integer or None, got {count!r}")
+            elif count and fun is None:
+                raise ProblemError(f"{self.name}: n_{which} = {count} given without {which}")
+            set_(f"n_{which}", int(count))
 
     # ----------------------------------------------------------------- structure
     @property
@@ -180,17 +217,18 @@ class Problem:
     def max_violation(self, x: np.ndarray) -> float:
         """Largest constraint violation at x: max(0, g_j), |h_k| and bound excess.
 
+        NaN if a constraint value is NaN (a NaN constraint is not satisfied).
         Uncounted; for reporting and verification only.
         """
         x = np.asarray(x, dtype=float)
         v = 0.0
         if self.n_ineq:
             g = np.atleast_1d(np.asarray(self.ineq(x), dtype=float))
-            v = max(v, float(np.max(g, initial=0.0)))
+            v = _worst(v, float(np.max(g, initial=0.0)))
         if self.n_eq:
             h = np.atleast_1d(np.asarray(self.eq(x), dtype=float))
-            v = max(v, float(np.max(np.abs(h), initial=0.0)))
-        if self.has_bounds:
+            v = _worst(v, float(np.max(np.abs(h), initial=0.0)))
+        if self.has_bounds:  # v first: a NaN v stays NaN
             v = max(v, float(np.max(self.lower - x, initial=0.0)), float(np.max(x - self.upper, initial=0.0)))
         return v
 

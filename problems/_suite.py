@@ -87,7 +87,8 @@ class Suite:
     def select(self, expression: str) -> Suite:
         """The same suite restricted to the cases ``expression`` selects."""
         if self.selector is None:
-            raise ValueError(f"suite {self.name} does not support selections; use --problems to pick cases")
+            raise ValueError(f"suite {self.name} does not support selection expressions: its cases are picked by "
+                             "case id ('problem/n=N/start[/variant]', as its cases() list them)")
         selector = self.selector
         return dataclasses.replace(self, build=lambda: selector(expression))
 

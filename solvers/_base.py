@@ -9,11 +9,11 @@ from __future__ import annotations
 import abc
 import dataclasses
 import math
-import numbers
 from collections.abc import Callable
 from typing import Any, ClassVar, final
 
 from problems import Oracle, Problem
+from problems._numbers import is_integer, is_number
 
 from ._result import SolverOutput
 
@@ -46,8 +46,8 @@ def positive(finite: bool = True) -> Check:
     return Check(lambda v: v > 0, "a number > 0")
 
 
-def nonneg(finite: bool = False) -> Check:
-    """value >= 0 (and finite if ``finite``)."""
+def nonneg(finite: bool = True) -> Check:
+    """value >= 0 (and finite unless ``finite=False``: only for an option whose doc gives inf a meaning)."""
     if finite:
         return Check(lambda v: v >= 0 and math.isfinite(v), "a finite number >= 0")
     return Check(lambda v: v >= 0, "a number >= 0")
@@ -97,14 +97,24 @@ def _type_ok(annotation: Any, value: Any) -> tuple[bool, str]:
     if kind == "bool":
         return isinstance(value, bool) or type(value).__name__ == "bool_", "a bool"
     if kind == "float":
-        return isinstance(value, numbers.Real) and not isinstance(value, bool), "a number"
+        return is_number(value), "a number"
     if kind == "int":
-        ok = isinstance(value, numbers.Integral) and not isinstance(value, bool)
+        ok = is_integer(value)
         ok = ok or (isinstance(value, float) and value.is_integer())  # e.g. max_steps=1e4 from a spec
         return ok, "an integer"
     if kind == "str":
         return isinstance(value, str), "a string"
     return True, ""
+
+
+def _valid_text(kind: str, check: Check | None) -> str:
+    """What is valid for an option: the check's text when it names the kind itself ("a finite number
+    > 0", "one of 'fixed', 'auto'"), else the kind followed by it ("an integer >= 1"), else the kind."""
+    if check is None:
+        return kind
+    if not kind or check.text.startswith(("a ", "an ", "one of ")):
+        return check.text
+    return f"{kind} {check.text}"
 
 
 class AbstractSolver(abc.ABC):
@@ -131,16 +141,26 @@ class AbstractSolver(abc.ABC):
                                 f"instead of subclassing it")
 
     def __post_init__(self) -> None:
-        """Check every option once: its type (from the annotation), its `Check`, then `check_together`."""
+        """Check every option once: its type (from the annotation), its `Check`, then `check_together`.
+
+        Last, a NaN in a float option is refused (never a setting; it can come from a spec's ``nan``),
+        after `check_together` so that a solver's own message for it comes first.
+        """
+        nans = []
         for f in dataclasses.fields(self):  # type: ignore[arg-type]  # concrete solvers are dataclasses
             value = getattr(self, f.name)
             ok, kind = _type_ok(f.type, value)
             check: Check | None = f.metadata.get("check")
             if ok and (check is None or check(value)):
+                if kind == "a number" and value is not None and math.isnan(value):
+                    nans.append(f)
                 continue
-            valid = " and ".join(t for t in (kind if not ok else "", check.text if check else "") if t)
-            raise ValueError(f"{self.name}: option {f.name}={value!r} is invalid; valid: {valid or kind}")
+            what = _valid_text(kind, check)
+            why = "" if ok or what == kind else f" (not {kind})"
+            raise ValueError(f"{self.name}: option {f.name}={value!r} is invalid{why}; valid: {what}")
         self.check_together()
+        for f in nans:
+            raise ValueError(f"{self.name}: option {f.name}=nan is invalid; valid: a number other than NaN")
 
     def check_together(self) -> None:  # noqa: B027 - an optional hook, not an abstract method
         """Checks relating several options (e.g. mu0 <= mu1); raise ValueError. Default: none."""

@@ -54,18 +54,35 @@ def get_solver_class(name: str) -> type[AbstractSolver]:
     return REGISTRY.get(name)
 
 
+SPEC_SYNTAX = "name[key=value,...]"
+#: spec values that ast.literal_eval does not read but that name a float (inf: "no limit" in several options)
+_FLOAT_WORDS = frozenset({"inf", "+inf", "-inf", "nan"})
+
+
 def parse_spec(spec: str) -> tuple[str, dict[str, Any]]:
-    """``"lfopc[delta_t=0.5,mu1=1e4]"`` -> ("lfopc", {...}) (benchopt's syntax)."""
+    """``"lfopc[delta_t=0.5,mu1=1e4]"`` -> ("lfopc", {...}) (benchopt's syntax).
+
+    Values are Python literals (``ast.literal_eval``); ``inf``, ``-inf`` and ``nan`` are floats;
+    anything else is kept as a string. An option given twice is an error.
+    """
     m = re.fullmatch(r"\s*([^\[\]\s]+)\s*(?:\[(.*)\])?\s*", spec)
     if not m:
-        raise ValueError(f"cannot parse solver specification {spec!r}")
+        raise ValueError(f"cannot parse solver specification {spec!r}; expected {SPEC_SYNTAX}")
     name, params = m.group(1), m.group(2)
     opts: dict[str, Any] = {}
     if params:
         for item in params.split(","):
             if "=" not in item:
-                raise ValueError(f"solver parameter {item!r} in {spec!r} is not key=value")
+                raise ValueError(f"solver parameter {item!r} in {spec!r} is not key=value; expected {SPEC_SYNTAX}")
             k, v = (s.strip() for s in item.split("=", 1))
+            if not k:
+                raise ValueError(f"solver parameter {item!r} in {spec!r} has an empty option name; "
+                                 f"expected {SPEC_SYNTAX}")
+            if k in opts:
+                raise ValueError(f"option {k} given more than once in solver specification {spec!r}")
+            if v in _FLOAT_WORDS:
+                opts[k] = float(v)
+                continue
             try:
                 opts[k] = ast.literal_eval(v)
             except (ValueError, SyntaxError):
@@ -76,7 +93,8 @@ def parse_spec(spec: str) -> tuple[str, dict[str, Any]]:
 def make_solver(spec: str | AbstractSolver, **options: Any) -> AbstractSolver:
     """A configured solver instance from a name (optionally ``name[k=v]``) and options.
 
-    Unknown option names raise ValueError listing the valid ones.
+    Unknown option names raise ValueError listing the valid ones; so does an option given
+    both in the specification and as a keyword.
     """
     if isinstance(spec, AbstractSolver):
         if options:
@@ -87,6 +105,10 @@ def make_solver(spec: str | AbstractSolver, **options: Any) -> AbstractSolver:
         return spec
     name, spec_opts = parse_spec(spec)
     cls = get_solver_class(name)
+    twice = sorted(set(spec_opts) & set(options))
+    if twice:
+        raise ValueError(f"option(s) {', '.join(twice)} given more than once: in the solver specification "
+                         f"{spec!r} and as keyword(s)")
     opts = {**spec_opts, **options}
     cls.check_option_names(opts)
     return cls(**opts)

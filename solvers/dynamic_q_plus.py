@@ -37,7 +37,7 @@ from scipy.linalg.lapack import dpotrf
 
 from problems import Oracle
 
-from ._base import AbstractSolver, final, option
+from ._base import AbstractSolver, at_least, final, option
 from ._qp_subproblem import ElasticQPResult, _sum, l1_model, linearized_violations, solve_elastic_qp
 from ._result import SolverOutput, Status
 from ._spherical import two_point_curvature
@@ -256,7 +256,7 @@ class DynamicQPlus(AbstractSolver):
                                            "one corrected step (one more oracle point)",
                                            "[OWN] Fletcher's second-order correction")
     memory: int = option(4, "non-monotone merit: compare with the worst of this many last accepted points",
-                         "[OWN] (Grippo-Lampariello-Lucidi style; 1 = monotone)")
+                         "[OWN] (Grippo-Lampariello-Lucidi style; 1 = monotone)", check=at_least(1))
     steering: bool = option(True, "raise the penalty weight until the step achieves at least a tenth of the "
                             "linearized infeasibility reduction the move limit allows (one more QP, only while "
                             "the elastic slacks are in use)", "[OWN] Byrd-Nocedal-Waltz steering rule")

@@ -29,7 +29,7 @@ import numpy as np
 
 from problems import BudgetExhausted, Oracle, Problem
 
-from ._base import AbstractSolver, Check, at_least, between, final, option, positive
+from ._base import AbstractSolver, Check, at_least, between, final, nonneg, option, positive
 from ._deadline import run_deadline
 from ._registry import make_solver
 from ._result import SolverOutput, Status
@@ -134,6 +134,12 @@ class _End:
     violation: float
     status: Status
     message: str
+    raised: bool = False  # the local run raised an exception (``message`` names it)
+
+
+def _or_inf(v: float) -> float:
+    """``v``, or inf for a NaN (so that a NaN sorts last instead of breaking the comparison)."""
+    return math.inf if math.isnan(v) else v
 
 
 @final
@@ -147,7 +153,8 @@ class Multistart(AbstractSolver):
     when `bayes_confidence` (n, r) >= ``confidence`` (status converged), or at ``max_starts``,
     ``max_time`` or the harness's deadline for the run (`solvers._deadline`: the next local
     run would not fit) with status max_iter: the best end is returned, the rule did not
-    certify it.  A local run that raises is recorded as a failed start; the search goes on.
+    certify it.  A local run that raises is recorded as a failed start; the search goes on (if
+    every local run raised, the run ends with status error and the first exception's message).
     """
 
     name = "multistart"
@@ -165,8 +172,9 @@ class Multistart(AbstractSolver):
     f_same: float = option(1e-3, "two ends reached the same minimum when their f differ by at most this "
                            "times max(1, |f|) (loose: local ends carry the local method's tolerance, "
                            "and a design problem's its numerical noise)", "[OWN]", check=positive())
-    feas_tol: float = option(1e-6, "an end is feasible when every violation is at most this", "[OWN]; "
-                             "solvers.solve's success rule", check=positive())
+    feas_tol: float = option(1e-6, "an end is feasible when every violation is at most this (left at its "
+                             "default, solvers.solve runs it with solve's own feas_tol)", "[OWN]; "
+                             "solvers.solve's success rule", check=nonneg())
     seed: int = option(0, "seed of the random starts (fixed: same inputs, same runs)", "[OWN]", check=at_least(0))
     max_time: float | None = option(None, "start no new local run after this many seconds (None: no limit)",
                                     "[OWN]", check=Check(lambda v: v is None or v > 0, "a number > 0 or None"))
@@ -199,21 +207,27 @@ class Multistart(AbstractSolver):
         except BudgetExhausted:
             raise
         except Exception as exc:  # noqa: BLE001 - a failed start is recorded; the search goes on
-            return _End(oracle.last_x, math.inf, math.inf, Status.ERROR, f"{type(exc).__name__}: {exc}")
+            return _End(oracle.last_x, math.inf, math.inf, Status.ERROR, f"{type(exc).__name__}: {exc}", raised=True)
         if x.size != oracle.n or not np.all(np.isfinite(x)):
             return _End(oracle.last_x, math.inf, math.inf, Status.ERROR, "non-finite end")
         f = oracle.f(x)
-        viol = 0.0
+        parts = []
         if oracle.n_ineq:
-            viol = max(viol, float(np.max(oracle.ineq(x), initial=0.0)))
+            parts.append(float(np.max(oracle.ineq(x), initial=0.0)))
         if oracle.n_eq:
-            viol = max(viol, float(np.max(np.abs(oracle.eq(x)), initial=0.0)))
+            parts.append(float(np.max(np.abs(oracle.eq(x)), initial=0.0)))
+        # a NaN is kept (Python's max(0.0, nan) would drop it and call the end feasible)
+        viol = math.nan if any(math.isnan(v) for v in parts) else max([0.0, *parts])
         if not (math.isfinite(f) and math.isfinite(viol)):
             return _End(x, math.inf, math.inf, Status.ERROR, f"non-finite f or violation at the end (f={f})")
         return _End(x, float(f), viol, status, message)
 
+    def _feasible(self, e: _End) -> bool:
+        """The end's violation is at most ``feas_tol`` (a NaN violation is not: the comparison is False)."""
+        return bool(e.violation <= self.feas_tol)
+
     def _good(self, e: _End) -> bool:
-        return e.status is Status.CONVERGED and e.violation <= self.feas_tol
+        return e.status is Status.CONVERGED and self._feasible(e)
 
     def _same(self, a: float, b: float) -> bool:
         return abs(a - b) <= self.f_same * max(1.0, abs(b))
@@ -274,12 +288,15 @@ class Multistart(AbstractSolver):
         if not ends:
             why = "the run's deadline reached" if stop == "deadline" else "evaluation budget exhausted"
             return SolverOutput(oracle.last_x, Status.MAX_ITER, f"{why} in the first local run", nit=0, extra=extra)
-        feasible = [e for e in ends if e.violation <= self.feas_tol]
+        if all(e.raised for e in ends):  # no local run ended: the search has no end to report
+            return SolverOutput(oracle.last_x, Status.ERROR, f"every local run of {len(ends)} raised an exception; "
+                                f"the first: {ends[0].message}", nit=len(ends), extra=extra)
+        feasible = [e for e in ends if self._feasible(e)]
         if feasible:  # e.g. every local run stopped on its cap: the lowest feasible end, uncertified
             best = min(feasible, key=lambda e: e.f)
             return SolverOutput(best.x, Status.MAX_ITER, f"no local run of {len(ends)} converged; the lowest "
                                 f"feasible end ({best.status.value}: {best.message})", nit=len(ends), extra=extra)
-        least = min(ends, key=lambda e: (e.violation, e.f))
+        least = min(ends, key=lambda e: (_or_inf(e.violation), _or_inf(e.f)))
         return SolverOutput(least.x, Status.FAILED, f"no local run of {len(ends)} ended feasible "
                             f"(least violation {least.violation:.3g}; last: {ends[-1].message})", nit=len(ends),
                             extra=extra)

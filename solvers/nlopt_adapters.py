@@ -17,17 +17,30 @@ SWIG-built wheels as ``nlopt.runtime_error`` / ``nlopt.invalid_argument`` (subcl
 ``nlopt.exception``, not of Python's RuntimeError or ValueError) with an empty text. The
 adapter turns them into the result code and NLopt's own reason (``opt.get_errmsg()``, e.g.
 "bug: more than iter SQP iterations").
+
+An exception from the problem's own functions inside NLopt's callbacks is re-raised by NLopt's
+wrapper after it stops, indistinguishable from its failure results when it is a RuntimeError or
+ValueError. The callbacks keep the first such exception and the adapter raises it after
+``optimize`` returns, so that `solvers.solve` records status error with the problem's message.
+`problems.BudgetExhausted` passes through the callbacks untouched and is handled by `solve`.
+
+``nit``: NLopt reports no iteration count; ``nit`` is NLopt's own count of objective evaluations
+(``opt.get_numevals()``: each call of the objective callback, with or without a gradient; the
+constraint callbacks are not counted), 0 when the run ended on NLopt's ForcedStop. The oracle's
+N^fg (``nfg``) is the cost reported.
 """
 
 from __future__ import annotations
 
 import dataclasses
-from typing import ClassVar
+import functools
+from collections.abc import Callable
+from typing import Any, ClassVar, TypeVar
 
 import nlopt
 import numpy as np
 
-from problems import Oracle, ProblemError
+from problems import BudgetExhausted, Oracle, ProblemError
 
 from ._base import AbstractSolver, at_least, between, final, nonneg, option
 from ._result import SolverOutput, Status
@@ -54,6 +67,36 @@ STATUS_MAP: dict[int, Status] = {
     nlopt.ROUNDOFF_LIMITED: Status.FAILED,      # -4
     nlopt.FORCED_STOP: Status.FAILED,           # -5
 }
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+class _Raised:
+    """The first exception a callback raised (NLopt's wrapper would pass it off as a failure result)."""
+
+    def __init__(self) -> None:
+        self.first: BaseException | None = None
+
+    def guard(self, fn: _F) -> _F:
+        """``fn`` keeping the first exception it raises (BudgetExhausted excepted: it passes through as itself)."""
+
+        @functools.wraps(fn)
+        def call(*args: Any) -> Any:
+            try:
+                return fn(*args)
+            except BudgetExhausted:
+                raise
+            except Exception as exc:
+                if self.first is None:
+                    self.first = exc
+                raise
+
+        return call  # type: ignore[return-value]  # the same signature
+
+    def reraise(self) -> None:
+        """Raise the kept exception, if any."""
+        if self.first is not None:
+            raise self.first
 
 
 @dataclasses.dataclass(frozen=True)
@@ -89,7 +132,9 @@ class _NloptBase(AbstractSolver):
                 return over
         n = oracle.n
         opt = nlopt.opt(self.algorithm, n)
+        raised = _Raised()
 
+        @raised.guard
         def objective(x: np.ndarray, grad: np.ndarray) -> float:
             if grad.size:
                 f, g = oracle.f_and_grad(x)
@@ -103,6 +148,7 @@ class _NloptBase(AbstractSolver):
             opt.set_upper_bounds(oracle.upper)
         m_i, m_e = oracle.n_ineq, oracle.n_eq
         if m_i:
+            @raised.guard
             def ineq(result: np.ndarray, x: np.ndarray, grad: np.ndarray) -> None:
                 result[:] = oracle.ineq(x)
                 if grad.size:
@@ -110,6 +156,7 @@ class _NloptBase(AbstractSolver):
 
             opt.add_inequality_mconstraint(ineq, [self.constraint_tol] * m_i)
         if m_e and self.native_eq:
+            @raised.guard
             def eq(result: np.ndarray, x: np.ndarray, grad: np.ndarray) -> None:
                 result[:] = oracle.eq(x)
                 if grad.size:
@@ -119,6 +166,7 @@ class _NloptBase(AbstractSolver):
         elif m_e:
             band = self.eq_band
 
+            @raised.guard
             def eq_as_ineq(result: np.ndarray, x: np.ndarray, grad: np.ndarray) -> None:
                 h = oracle.eq(x)
                 result[:] = np.concatenate([h - band, -h - band])
@@ -133,6 +181,13 @@ class _NloptBase(AbstractSolver):
         opt.set_maxeval(self.maxeval)
         opt.set_maxtime(self.maxtime)
         x0 = start_in_bounds(oracle)
+        try:
+            return self._optimize(opt, x0, oracle)
+        finally:  # an exception of the problem's (module doc), whatever NLopt made of it
+            raised.reraise()
+
+    def _optimize(self, opt: nlopt.opt, x0: np.ndarray, oracle: Oracle) -> SolverOutput:
+        """Run NLopt from ``x0``: its result code, or its failure result, as a SolverOutput."""
         try:
             x = opt.optimize(x0)
             code = opt.last_optimize_result()
@@ -154,7 +209,6 @@ class _NloptBase(AbstractSolver):
         status = self.STATUS_MAP.get(int(code), Status.FAILED)
         return SolverOutput(np.asarray(x, dtype=float), status, f"NLopt result {code} ({_code_name(code)})",
                             nit=int(opt.get_numevals()), extra={"native_status": int(code)})
-
 
     def _configure(self, opt: nlopt.opt) -> None:
         """Algorithm-specific NLopt parameters (none by default)."""

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import is_number
 from . import _geometry as geo
 from ._distribution import METHODS, distribute
 from ._pointwise import BACKENDS, solve_pointwise
@@ -160,7 +161,7 @@ class CableRobot:
         """
         if method not in METHODS:
             raise ValueError(f"unknown tension method {method!r}; valid: {', '.join(METHODS)}")
-        if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol >= 0):
+        if not (is_number(tol) and math.isfinite(tol) and tol >= 0):
             # tol widens the limits [t_min - tol, t_max + tol] the exact enumeration accepts: a
             # negative one shifted every tension, a NaN one made every pose infeasible
             raise ValueError(f"tol must be a finite number >= 0 (the tolerance on the tension limits), got {tol!r}")

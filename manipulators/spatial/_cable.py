@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import finite_rows
+from .._checks import finite_rows, is_integer, is_number
 from ._distribution6 import distribute6, full_rank6
 
 __all__ = ["SpatialCableRobot", "SpatialWorkspace", "rotation_matrix", "ray_boundary", "ray_reach", "grid_points",
@@ -77,14 +77,9 @@ def _points(name: str, value: Any) -> np.ndarray:
     return a
 
 
-def _is_number(v: Any) -> bool:
-    """A real number (bool is not one)."""
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
-
-
 def _resolution(resolution: Any) -> int:
     """Grid cells per axis: an integer >= 1 whose cube is at most MAX_GRID_POINTS."""
-    if isinstance(resolution, (bool, np.bool_)) or not isinstance(resolution, (int, np.integer)) or resolution < 1:
+    if not is_integer(resolution) or resolution < 1:
         raise ValueError(f"resolution must be an integer >= 1 (cells per axis); got {resolution!r}")
     n = int(resolution)
     if n**3 > MAX_GRID_POINTS:
@@ -176,9 +171,9 @@ def ray_reach(feasible: Any, centre: Any, directions: Any, reach: float, tol: fl
     if np.any(norms == 0):
         raise ValueError("directions must be non-zero vectors")
     D = D / norms
-    if not (_is_number(reach) and np.isfinite(reach) and reach > 0):
+    if not (is_number(reach) and np.isfinite(reach) and reach > 0):
         raise ValueError(f"reach must be a positive length; got {reach!r}")
-    if not (_is_number(tol) and np.isfinite(tol) and tol > 0):  # tol <= 0: the bisection never ends
+    if not (is_number(tol) and np.isfinite(tol) and tol > 0):  # tol <= 0: the bisection never ends
         raise ValueError(f"tol must be a finite length > 0 (the bisection's interval); got {tol!r}")
     if not feasible(c[None])[0]:
         raise ValueError(f"centre {c.tolist()} is not in the workspace")
@@ -222,7 +217,7 @@ class SpatialCableRobot:
             raise ValueError(f"frame_points has {m} rows but platform_points has {self.platform_points.shape[0]}")
         if m < 7:
             raise ValueError(f"a redundant spatial cable robot needs m >= 7 cables; got {m}")
-        if not (_is_number(self.t_min) and _is_number(self.t_max) and np.isfinite(self.t_min)
+        if not (is_number(self.t_min) and is_number(self.t_max) and np.isfinite(self.t_min)
                 and np.isfinite(self.t_max) and 0 <= self.t_min < self.t_max):
             raise ValueError(f"need finite 0 <= t_min < t_max; got t_min={self.t_min!r}, t_max={self.t_max!r}")
 

@@ -20,9 +20,9 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import is_number
 from ._cable import (
     SpatialWorkspace,
-    _is_number,
     _points,
     feasible_in_chunks,
     grid_points,
@@ -56,13 +56,13 @@ class GoughStewart:
         if self.base_points.shape[0] != 6 or self.platform_points.shape[0] != 6:
             raise ValueError("a Gough-Stewart platform has 6 base and 6 platform points; got "
                              f"{self.base_points.shape[0]} and {self.platform_points.shape[0]}")
-        if not (_is_number(self.l_min) and _is_number(self.l_max) and np.isfinite(self.l_min)
+        if not (is_number(self.l_min) and is_number(self.l_max) and np.isfinite(self.l_min)
                 and np.isfinite(self.l_max) and 0 <= self.l_min < self.l_max):
             raise ValueError(f"need finite 0 <= l_min < l_max; got l_min={self.l_min!r}, l_max={self.l_max!r}")
         cl = self.char_length
         if cl is None:
             cl = float(np.sqrt(np.mean(np.sum(self.platform_points**2, axis=1))))
-        if not (_is_number(cl) and np.isfinite(cl) and cl > 0):
+        if not (is_number(cl) and np.isfinite(cl) and cl > 0):
             raise ValueError(f"char_length must be a positive length; got {cl!r}")
         object.__setattr__(self, "char_length", cl)
 

@@ -6,7 +6,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-import numpy as np
+from .._checks import is_number
 
 __all__ = ["chord_length", "lookup"]
 
@@ -17,8 +17,7 @@ def chord_length(chord: Any, default: float, where: str) -> float:
     which the problems count as an empty workspace, so the objective would be silently flat."""
     if chord is None:
         return float(default)
-    ok = isinstance(chord, (int, float, np.integer, np.floating)) and not isinstance(chord, bool)
-    if not (ok and math.isfinite(chord) and chord > 0):
+    if not (is_number(chord) and math.isfinite(chord) and chord > 0):
         raise ValueError(f"{where}: chord must be a finite length > 0 (None: the thesis's {default}), got {chord!r}")
     return float(chord)
 

@@ -12,6 +12,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from .._checks import is_integer, is_number
+
 __all__ = ["perturbed", "start_label", "parse_start"]
 
 
@@ -22,9 +24,9 @@ def perturbed(x0, key: Sequence[int], k: int, eps: float) -> np.ndarray:
     ``key`` names the case (e.g. the index of the thesis start) so that cases get their own
     perturbations.
     """
-    if not (isinstance(k, (int, np.integer)) and k >= 0):
+    if not (is_integer(k) and k >= 0):
         raise ValueError(f"k must be an integer >= 0, got {k!r}")
-    if not (isinstance(eps, (int, float)) and eps > 0):
+    if not (is_number(eps) and eps > 0):
         raise ValueError(f"eps must be a number > 0, got {eps!r}")
     x0 = np.asarray(x0, dtype=float)
     if k == 0:

@@ -32,6 +32,7 @@ import numpy as np
 
 from problems import Case, Problem, Suite
 
+from .._checks import is_integer
 from ..prescribed import PRESCRIBED
 from ._design_cache import DesignCache
 from .rpr2_exact import EXACT_K, _jsonable, exact_e_problem, exact_optimum, exact_p_problem, p_start
@@ -60,7 +61,7 @@ def e_exact_problem(start: str = "SP1", prescribed: str = "P1", k: int = EXACT_K
         raise ValueError(f"unknown start {start!r}; valid: {', '.join(STARTS)}")
     if prescribed not in PRESCRIBED:
         raise ValueError(f"unknown prescribed workspace {prescribed!r}; valid: {', '.join(PRESCRIBED)}")
-    if not (isinstance(k, (int, np.integer)) and k >= 3):
+    if not (is_integer(k) and k >= 3):
         raise ValueError(f"k (boundary points) must be an integer >= 3, got {k!r}")
     f, cons = exact_e_problem(prescribed, int(k))
     # the oracle asks for value and derivative at one point separately; each pair is one computation
@@ -88,7 +89,7 @@ def p_exact_problem(prescribed: str = "P1", k: int = EXACT_K) -> Problem:
     """
     if prescribed not in P_CASES:
         raise ValueError(f"unknown prescribed workspace {prescribed!r}; valid: {', '.join(P_CASES)}")
-    if not (isinstance(k, (int, np.integer)) and k >= 3):
+    if not (is_integer(k) and k >= 3):
         raise ValueError(f"k (boundary points) must be an integer >= 3, got {k!r}")
     cons = exact_p_problem(prescribed, int(k))
     c_memo: DesignCache[tuple[np.ndarray, np.ndarray]] = DesignCache(4)

@@ -19,6 +19,7 @@ import numpy as np
 
 from problems import Case, Problem, Suite
 
+from .._checks import is_integer
 from .rpr3_exact import CASES, GLOBAL_BOX, _slices, exact_constraints
 from .rpr3_suite import PRESCRIBED3, SETTINGS, SOLVERS, design
 
@@ -41,7 +42,7 @@ def exact_problem(kind: str, prescribed: str = "P1", k: int = K) -> Problem:
     gradient is exact; the constraints' Jacobian is by central differences (step `FD_STEP`).
     """
     kl = str(kind).lower()
-    if not (isinstance(k, (int, np.integer)) and k >= 3):
+    if not (is_integer(k) and k >= 3):
         raise ValueError(f"k (boundary points per slice) must be an integer >= 3, got {k!r}")
     cons = exact_constraints(kl, prescribed, int(k))  # checks kind and prescribed, naming the valid ones
     d0 = np.asarray(SETTINGS[kl]["start"], dtype=float)

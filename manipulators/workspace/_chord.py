@@ -274,7 +274,9 @@ def _ray_search(ev: Evaluator, u0, s, d, tol, smooth, n_refine, r_max):
         r_lo, f_lo = rs[-1], v[-1]
         step *= 2.0  # large or unbounded workspaces: grow the sampling step
     raise ChordError(f"no workspace boundary found along the ray from {u0.tolist()} in direction "
-                     f"{s.tolist()} within r_max = {r_max:g} (unbounded workspace?)")
+                     f"{s.tolist()} within r_max = {r_max:g}: either the workspace is unbounded in this "
+                     f"direction, or its boundary lies farther out and r_max must be larger (pass a larger "
+                     f"r_max=...; the default is 1e4 * chord)")
 
 
 def _circle(b, d, angles):
