@@ -1,14 +1,14 @@
 """A user's problems, checked once at their starting points before any run (suite files).
 
-`Problem` checks what it can without evaluating anything; the counting oracle converts what
-the callables return (``float(f)``, ``reshape(m, n)``), so some mistakes only show inside a
-run, once per solver, as an error row with NumPy's message, and one of them not at all: a
-transposed Jacobian of the right size is silently reshaped into wrong derivatives.
-`check_problem` evaluates every callable of a problem once at x0 (outside any run, uncounted)
-and raises `ProblemInputError` naming the problem, the callable and the shape it must have;
-it returns warnings for what is legal but will likely fail (NaN or inf at x0) or is probably
-wrong (a gradient or Jacobian that disagrees with central differences at x0).  `harness run`
-and `run --dry-run` call it for every problem of a ``--suite-file`` they are about to run.
+`Problem` checks what it can without evaluating anything, and the counting oracle refuses a
+callable's bad return value (a vector objective, None, a transposed Jacobian) when a solver
+first asks for it, so without this check such a mistake shows once per solver, as an error
+row. `check_problem` evaluates every callable of a problem once at x0 (outside any run,
+uncounted) and raises `ProblemInputError` naming the problem, the callable and the shape it
+must have, before anything runs; it returns warnings for what is legal but will likely fail
+(NaN or inf at x0) or is probably wrong (a gradient or Jacobian that disagrees with central
+differences at x0).  `harness run` and `run --dry-run` call it for every problem of a
+``--suite-file`` they are about to run.
 """
 
 from __future__ import annotations
@@ -81,6 +81,8 @@ def check_problem(problem: Problem, derivatives: bool = True) -> list[str]:
         raise ProblemInputError(f"problem {problem.name!r}: objective(x0) returned an array of shape {f.shape}; it "
                                 "must return one number")
     try:
+        if isinstance(raw[0], (bool, np.bool_)):  # the counting oracle refuses a bool, as not a number
+            raise TypeError
         float(raw[0])  # what the counting oracle does with it: NumPy >= 2 refuses an array of shape (1,)
     except (TypeError, ValueError):
         what = ("None (a missing return?)" if raw[0] is None else

@@ -24,6 +24,7 @@ def _quad(**kw):
 @pytest.mark.parametrize("kw, says", [
     (dict(objective=lambda x: 2 * x), "objective(x0) returned an array of shape (3,); it must return one number"),
     (dict(objective=lambda x: "a"), "objective(x0) returned str"),
+    (dict(objective=lambda x: True), "objective(x0) returned bool"),  # the oracle refuses a bool too
     (dict(gradient=lambda x: np.ones(2)), "gradient(x0) has shape (2,); expected (3,)"),
     (dict(gradient=lambda x: np.ones((3, 3))), "gradient(x0) has shape (3, 3); expected (3,)"),
     (dict(ineq=lambda x: x[:2], n_ineq=3), "ineq(x0) has shape (2,); expected (3,) (n_ineq = 3)"),
