@@ -115,18 +115,22 @@ class Campaign:
             return "SIGKILL of the harness"
         self._interrupted(f"kill-harness-{i}", fault)
 
+    def _kill_one(self, proc: subprocess.Popen[bytes], pick: Callable[[list[int]], list[int]], what: str,
+                  tries: int, pause: float) -> str:
+        """SIGKILL one process, chosen at random among ``pick(descendants of proc)``, polling until there is one."""
+        for _ in range(tries):
+            victims = pick(_descendants(proc.pid))
+            if victims:
+                victim = self.rng.choice(victims)
+                os.kill(victim, signal.SIGKILL)
+                return f"SIGKILL of {what} {victim}"
+            time.sleep(pause)
+        return f"no {what} found to kill"
+
     def kill_worker(self, i: int) -> None:
-        def fault(proc: subprocess.Popen[bytes]) -> str:
-            for _ in range(50):
-                kids = [p for p in _descendants(proc.pid) if "multiprocessing" in _cmdline(p)
-                        or "harness" in _cmdline(p)]
-                if kids:
-                    victim = self.rng.choice(kids)
-                    os.kill(victim, signal.SIGKILL)
-                    return f"SIGKILL of worker {victim}"
-                time.sleep(0.05)
-            return "no worker found to kill"
-        self._interrupted(f"kill-worker-{i}", fault)
+        def workers(kids: list[int]) -> list[int]:
+            return [p for p in kids if "multiprocessing" in _cmdline(p) or "harness" in _cmdline(p)]
+        self._interrupted(f"kill-worker-{i}", lambda proc: self._kill_one(proc, workers, "worker", 50, 0.05))
 
     def sigint(self) -> None:
         def fault(proc: subprocess.Popen[bytes]) -> str:
@@ -135,18 +139,11 @@ class Campaign:
         self._interrupted("sigint", fault)
 
     def kill_dask_worker(self) -> None:
-        def fault(proc: subprocess.Popen[bytes]) -> str:
-            for _ in range(100):
-                # Dask worker processes: spawned children of the nannies that run children of their own
-                kids = [p for p in _descendants(proc.pid) if "spawn_main" in _cmdline(p)]
-                workers = [p for p in kids if _descendants(p)]
-                if workers:
-                    victim = self.rng.choice(workers)
-                    os.kill(victim, signal.SIGKILL)
-                    return f"SIGKILL of Dask worker {victim}"
-                time.sleep(0.1)
-            return "no Dask worker found to kill"
-        self._interrupted("kill-dask-worker", fault, "--executor", "dask", "--scheduler", "local:2")
+        def workers(kids: list[int]) -> list[int]:
+            # Dask worker processes: spawned children of the nannies that run children of their own
+            return [p for p in kids if "spawn_main" in _cmdline(p) and _descendants(p)]
+        self._interrupted("kill-dask-worker", lambda proc: self._kill_one(proc, workers, "Dask worker", 100, 0.1),
+                          "--executor", "dask", "--scheduler", "local:2")
 
     def concurrent(self) -> None:
         out = self.out / "concurrent"
