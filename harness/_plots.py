@@ -27,6 +27,7 @@ from ._profiles import (
     reference_data_profile,
     solver_labels,
 )
+from ._styles import solver_order, solver_styles
 
 __all__ = ["plot", "KINDS", "DATA_TAUS"]
 
@@ -38,7 +39,6 @@ CAMPAIGN_SUITES = ("cutest", "hs-all")
 LOG_RATIO_PAIRS = (("dynamic-q", "scipy-slsqp"), ("dynamic-q-plus", "scipy-slsqp"), ("dynamic-q", "ipopt"),
                    ("lfopc", "ipopt"),
                    ("etopc", "ipopt"), ("sqsd", "scipy-bfgs"))
-STYLES = ("-", "--", "-.", ":")
 REFERENCE_ER = 1e-5  # E^r of a solved run in the thesis's tables (eq. 3.12)
 DATA_TAUS = (1e-1, 1e-3, 1e-5, 1e-7)
 METRICS = {"nfg": "function+gradient evaluations $N^{fg}$", "wall_time_s": "wall time"}
@@ -109,9 +109,9 @@ def _profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, suffix: str 
     for metric, what in METRICS.items():
         grid, rho = performance_profile(runs, metric)
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
-        for i, lab in enumerate(rho.columns):  # many solvers: colours and line styles both vary
-            ax.step(grid, rho[lab], where="post", label=f"{lab} ({rho[lab].iloc[-1]:.0%})",
-                    linestyle=STYLES[(i // 10) % len(STYLES)], color=f"C{i % 10}")
+        look = solver_styles(rho.columns)
+        for lab in sorted(rho.columns, key=solver_order):
+            ax.step(grid, rho[lab], where="post", label=f"{lab} ({rho[lab].iloc[-1]:.0%})", **look[lab])
         ax.set_xlabel(r"$\log_2 \tau$ (cost relative to the best solver)")
         ax.set_ylabel(r"fraction of problems solved, $\rho_s(\tau)$")
         ax.set_ylim(-0.02, 1.02)
@@ -129,11 +129,11 @@ def _data_profiles(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, suffix:
     paths: list[pathlib.Path] = []
     fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharey=True)
     prepared = prepare_histories(runs)
+    look = solver_styles(prepared["labels"])
     for ax, tau in zip(axes.flat, DATA_TAUS):
         grid, d = data_profile(None, tau, prepared=prepared)
-        for i, lab in enumerate(d.columns):
-            ax.step(grid, d[lab], where="post", label=lab, linestyle=STYLES[(i // 10) % len(STYLES)],
-                    color=f"C{i % 10}")
+        for lab in sorted(d.columns, key=solver_order):
+            ax.step(grid, d[lab], where="post", label=lab, **look[lab])
         ax.set_title(rf"$\tau = 10^{{{int(np.log10(tau))}}}$")
         if grid[-1] > 50 * max(grid[1] if grid.size > 1 else 1.0, 1e-3):
             ax.set_xscale("log")  # budgets spanning decades: linear axes hide the fast solvers
@@ -158,8 +158,9 @@ def _reference_data_profile(suite: str, runs: pd.DataFrame, outdir: pathlib.Path
     plt = _plt()
     grid, d = reference_data_profile(runs, er_tol=REFERENCE_ER, feas_tol=FEAS_TOL)
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    for lab in d.columns:
-        ax.step(grid, d[lab], where="post", label=f"{lab} ({d[lab].iloc[-1]:.0%})")
+    look = solver_styles(d.columns)
+    for lab in sorted(d.columns, key=solver_order):
+        ax.step(grid, d[lab], where="post", label=f"{lab} ({d[lab].iloc[-1]:.0%})", **look[lab])
     if grid[-1] > 50 * max(grid[1] if grid.size > 1 else 1.0, 1e-3):
         ax.set_xscale("log")
     ax.set_xlabel(r"evaluations / $(n_p + 1)$")
@@ -234,14 +235,15 @@ def _histories(suite: str, runs: pd.DataFrame, outdir: pathlib.Path, problem: st
         f_ref = grp["f_ref"].iloc[0]
         has_ref = bool(np.isfinite(f_ref))
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
-        for r in grp.itertuples():
+        look = solver_styles(grp["label"])
+        for r in sorted(grp.itertuples(), key=lambda r: solver_order(r.label)):
             nfg, fb = best_so_far(r.history)
             ok = np.isfinite(fb)
             if not ok.any():  # say so in the legend rather than leave the solver out silently
                 ax.plot([], [], " ", label=f"{r.label} ({r.status}; no feasible point recorded)")
                 continue
             y = np.maximum(fb[ok] - f_ref, 1e-17) if has_ref else fb[ok]
-            ax.step(nfg[ok], y, where="post", label=f"{r.label} ({r.status})")
+            ax.step(nfg[ok], y, where="post", label=f"{r.label} ({r.status})", **look[r.label])
         if has_ref:
             ax.set_yscale("log")
             ax.set_ylabel(r"best feasible $f - f_{ref}$")

@@ -12,6 +12,8 @@ import pathlib
 import numpy as np
 import pandas as pd
 
+from harness._styles import solver_order, solver_styles
+
 __all__ = ["figures"]
 
 
@@ -147,11 +149,16 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         if not len(sub):
             continue
         fig, ax = plt.subplots(figsize=(6, 4))
-        for _, r in sub.iterrows():
+        look = solver_styles(sub["solver"])
+        # one solver, several starts (Fig. 4.11): a colour per start instead
+        by_start = start is None and sub["solver"].nunique() == 1
+        sub = sub.assign(_order=[solver_order(v) for v in sub["solver"]]).sort_values(["_order", "start"])
+        for k, (_, r) in enumerate(sub.iterrows()):
             h = _hist(r["history"])
             if h.shape[0]:
                 y = -h[:, 1] if prob.startswith("rpr2-p") else h[:, 1]
-                ax.plot(h[:, 0], y, lw=0.9, label=f"{r['solver']}" + ("" if start else f" {r['start']}"))
+                kw = {"color": f"C{k % 10}"} if by_start else look[r["solver"]]
+                ax.plot(h[:, 0], y, lw=0.9, label=f"{r['solver']}" + ("" if start else f" {r['start']}"), **kw)
         ax.set_xlabel("N^fg")
         ax.set_ylabel("min kappa^-1" if prob.startswith("rpr2-p") else "f")
         ax.set_title(f"Fig. {num.replace('_', '.')}: convergence, {prob} {start or ''}", fontsize=9)

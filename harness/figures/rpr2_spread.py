@@ -13,6 +13,8 @@ import pathlib
 import numpy as np
 import pandas as pd
 
+from harness._styles import solver_styles
+
 __all__ = ["figures"]
 
 
@@ -29,7 +31,7 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         return []
     th = _thesis_f()
     solvers = sorted(runs["solver"].unique(), key=_solver_order)
-    colors = dict(zip(solvers, ["tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown"]))
+    colors = {k: v["color"] for k, v in solver_styles(solvers).items()}
     width = 0.6 / max(len(solvers), 1)  # each solver's strip within the start's slot
     starts = list(STARTS)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
@@ -49,14 +51,14 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
                         label=f"{solver}, thesis start" if i == 0 else None)
             f_th = th.get((pid, sp))
             if f_th is not None:
-                ax.hlines(f_th, i - 0.3, i + 0.3, color="tab:red", lw=2, label="thesis f*" if i == 0 else None)
+                ax.hlines(f_th, i - 0.3, i + 0.3, color="k", lw=2, label="thesis f*" if i == 0 else None)
                 if kind == "e":
-                    ax.fill_between([i - 0.3, i + 0.3], f_th * (1 - E_REL), f_th * (1 + E_REL), color="tab:red",
+                    ax.fill_between([i - 0.3, i + 0.3], f_th * (1 - E_REL), f_th * (1 + E_REL), color="0.5",
                                     alpha=0.15, label=f"thesis +-{E_REL:.0%}" if i == 0 else None)
         if kind == "o":
-            ax.axhline(O_LIMIT, color="tab:red", ls="--", lw=1, label=f"acceptance f* <= {O_LIMIT}")
+            ax.axhline(O_LIMIT, color="k", ls="--", lw=1, label=f"acceptance f* <= {O_LIMIT}")
         else:
-            ax.axhline(E_TARGET, color="tab:orange", ls="--", lw=1, label=f"Dynamic-Q+ target f* <= {E_TARGET}")
+            ax.axhline(E_TARGET, color="0.3", ls="--", lw=1, label=f"Dynamic-Q+ target f* <= {E_TARGET}")
         ax.set_xticks(range(len(starts)), starts)
         ax.set_ylabel("f* (triangle scheme)")
         ax.set_title(f"{label} synthesis ({'Tables 4.3-4.6' if kind == 'o' else 'Table 4.7'})")

@@ -18,6 +18,8 @@ import pathlib
 import numpy as np
 import pandas as pd
 
+from harness._styles import solver_order, solver_styles
+
 __all__ = ["figures"]
 
 KIND_FIGS = {"so": "5.7-5.9", "mo": "5.10-5.14", "d": "5.15-5.17"}
@@ -89,15 +91,6 @@ def _panel(ax, kind, d, pnames, title):
     ax.legend(fontsize=6, loc="lower left")
 
 
-def _solver_color(name: str):
-    """One colour per solver in every panel (the suite's solvers in order, others grey)."""
-    import matplotlib.pyplot as plt
-
-    from manipulators.synthesis.rpr3_suite import SOLVERS
-
-    return plt.cm.tab10(SOLVERS.index(name)) if name in SOLVERS else "0.5"
-
-
 def plt_colors(n):
     import matplotlib.pyplot as plt
 
@@ -153,9 +146,10 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
             if r is not None:
                 _panel(ax, kind, np.asarray(r["x"], float), [pn],
                        f"{pn}: {r['solver']} f* = {-r['f']:.3f}" + ("" if enclosed else " (W_p NOT enclosed)"))
-            for _, r in sub.iterrows():
+            look = solver_styles(sub["solver"])
+            for _, r in sorted(sub.iterrows(), key=lambda ir: solver_order(ir[1]["solver"])):
                 h = np.asarray(json.loads(r["history"]) or [[0, np.nan, np.nan]], dtype=float)
-                ax2.plot(h[:, 0], -h[:, 1], lw=1, label=r["solver"], color=_solver_color(r["solver"]))
+                ax2.plot(h[:, 0], -h[:, 1], lw=1, label=r["solver"], **look[r["solver"]])
             ax2.set_xlabel("N^fg")
             ax2.set_ylabel("min kappa^-1")
             ax2.set_title(pn, fontsize=8)

@@ -16,6 +16,8 @@ import pathlib
 import numpy as np
 import pandas as pd
 
+from harness._styles import solver_styles
+
 __all__ = ["figures"]
 
 
@@ -38,7 +40,7 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
     # the figures directory is <out>/<suite>/figures: the reference sits beside it
     optima = dict(load_reference(outdir.parent.parent, "rpr3-spread").get("exact_optimum") or {})
     solvers = sorted(runs["solver"].unique(), key=_solver_order)
-    colors = dict(zip(solvers, ["tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown"]))
+    colors = {k: v["color"] for k, v in solver_styles(solvers).items()}
     width = 0.6 / max(len(solvers), 1)
     fig, axes = plt.subplots(1, len(KINDS), figsize=(5 * len(KINDS), 4))
     for ax, kind in zip(np.atleast_1d(axes), KINDS):
@@ -66,7 +68,7 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
                 ax.fill_between([i - 0.35, i + 0.35], local - F_TOL, local, color="k", alpha=0.08,
                                 label=f"within {F_TOL} of it" if i == 0 else None)
             if math.isfinite(best) and abs(best - local) > F_TOL:
-                ax.hlines(best, i - 0.35, i + 0.35, color="tab:red", lw=1.5,
+                ax.hlines(best, i - 0.35, i + 0.35, color="k", lw=1.5,
                           label="exact best design found" if i == 0 else None)
         ax.set_xticks(range(len(PRESCRIBED)), PRESCRIBED)
         ax.set_xlabel("prescribed workspace W_p")

@@ -17,7 +17,7 @@ import pandas as pd
 
 from problems.reference import thesis_table
 
-from ._base import Table, count_cell
+from ._base import Table, column_flags, count_cell
 
 __all__ = ["tables"]
 
@@ -120,9 +120,7 @@ def _o_table(runs: pd.DataFrame, start: str, thesis: pd.DataFrame) -> Table:
         thesis_alg = r["solver"] in THESIS_NAMES.values()
         flags.append(bool(applicable and thesis_alg and not (np.isfinite(f) and f <= O_LIMIT)))
     frame = pd.DataFrame(rows)
-    fl = pd.DataFrame(False, index=frame.index, columns=frame.columns)
-    if len(frame):
-        fl["f* (disc.)"] = flags
+    fl = column_flags(frame, **{"f* (disc.)": flags})
     th_rows = frame[frame["source"] == "thesis"] if len(frame) else frame
     same = sum(
         1
@@ -291,9 +289,7 @@ def _e_table(runs: pd.DataFrame, thesis: pd.DataFrame, reference: dict) -> Table
                    and not (abs(float(r["f"]) - f_th) <= E_REL * f_th and ev.get("dwp_exact", 1.0) <= 0.01))
             flags.append(bool(bad))
     frame = pd.DataFrame(rows)
-    fl = pd.DataFrame(False, index=frame.index, columns=frame.columns)
-    if len(frame):
-        fl["f*"] = flags
+    fl = column_flags(frame, **{"f*": flags})
     return Table(
         name="table_4_7",
         title="Table 4.7: E synthesis (chord 0.1): min dW_c s.t. dW_p = 0",
@@ -358,9 +354,7 @@ def _p_table(runs: pd.DataFrame, thesis: pd.DataFrame) -> Table:
                    and not (fstar >= float(t["f_star"]) - P_TOL and ev.get("enclosed", False)))
             flags.append(bool(bad))
     frame = pd.DataFrame(rows)
-    fl = pd.DataFrame(False, index=frame.index, columns=frame.columns)
-    if len(frame):
-        fl["f*"] = flags
+    fl = column_flags(frame, **{"f*": flags})
     return Table(name="table_4_9", title="Table 4.9: P synthesis: max min kappa^-1 over dP s.t. g(d) <= 0 (4.16)",
                  frame=frame, flags=fl,
                  notes=["f = min kappa^-1 over the prescribed boundary (2048 points); g* from (4.16) with the "

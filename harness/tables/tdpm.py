@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._base import Table, count_cell
+from ._base import Table, column_flags, count_cell
 
 __all__ = ["tables", "published_table", "BEST_TOL", "PUBLISHED_TOL"]
 
@@ -105,8 +105,7 @@ def tables(runs: pd.DataFrame) -> list[Table]:
         cols = ["source", "solver", "run", "N^g", "N^fg", "d0", "A_d0", "d*", "A_d*", "min sep", "status"]
         frame = frame.reindex(columns=cols)
         thesis_best = max(p["A_dstar"] for p in pub)
-        flags = pd.DataFrame(False, index=frame.index, columns=frame.columns)
-        flags["min sep"] = violates.to_numpy()
+        flags = column_flags(frame, **{"min sep": list(violates.to_numpy())})
         out.append(Table(f"table_{tid.replace('.', '_')}",
                          f"Table {tid}: {n}-cable TDPM optimized designs for {load} (ours beside the thesis's)",
                          frame, flags,
