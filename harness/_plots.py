@@ -28,6 +28,7 @@ from ._profiles import (
     solver_labels,
 )
 from ._styles import solver_order, solver_styles
+from .figures import save_figure
 
 __all__ = ["plot", "KINDS", "DATA_TAUS"]
 
@@ -54,12 +55,7 @@ def _plt():
 
 
 def _save(fig, outdir: pathlib.Path, stem: str) -> list[pathlib.Path]:
-    outdir.mkdir(parents=True, exist_ok=True)
-    paths = [outdir / f"{stem}.png", outdir / f"{stem}.svg"]
-    fig.savefig(paths[0], dpi=120, bbox_inches="tight")
-    fig.savefig(paths[1], bbox_inches="tight")
-    _plt().close(fig)
-    return paths
+    return save_figure(fig, outdir / f"{stem}.png", svg=True)
 
 
 def _legend(ax, n: int, outside: bool | None = None) -> None:

@@ -12,7 +12,7 @@ import pathlib
 
 import pandas as pd
 
-__all__ = ["NoFigurePlugin", "thesis_figures", "finish"]
+__all__ = ["NoFigurePlugin", "thesis_figures", "finish", "save_figure"]
 
 
 class NoFigurePlugin(LookupError):
@@ -38,12 +38,28 @@ def thesis_figures(suite: str, runs: pd.DataFrame, outdir: pathlib.Path) -> list
     return [pathlib.Path(p) for p in module.figures(runs, outdir)]
 
 
-def finish(fig, title: str, path: pathlib.Path) -> list[pathlib.Path]:
-    """Title, lay out, write (120 dpi) and close a plug-in's figure; returns ``[path]``."""
+def save_figure(fig, path: pathlib.Path, *, dpi: int = 120, tight: bool = True,
+                svg: bool = False) -> list[pathlib.Path]:
+    """Write ``fig`` as PNG at ``path`` (and as SVG beside it when ``svg``), close it, and return
+    the paths.  The SVG carries no date and fixed ids, so the same runs draw the same bytes
+    (PNG output of the Agg backend is deterministic already)."""
     import matplotlib.pyplot as plt
 
+    path = pathlib.Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    kw = {"bbox_inches": "tight"} if tight else {}
+    fig.savefig(path, dpi=dpi, **kw)
+    paths = [path]
+    if svg:
+        with plt.rc_context({"svg.hashsalt": "haybench"}):
+            fig.savefig(path.with_suffix(".svg"), metadata={"Date": None}, **kw)
+        paths.append(path.with_suffix(".svg"))
+    plt.close(fig)
+    return paths
+
+
+def finish(fig, title: str, path: pathlib.Path) -> list[pathlib.Path]:
+    """Title, lay out, write (120 dpi) and close a plug-in's figure; returns ``[path]``."""
     fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return [pathlib.Path(path)]
+    return save_figure(fig, path, tight=False)

@@ -13,6 +13,7 @@ import numpy as np
 import pandas as pd
 
 from harness._styles import solver_order, solver_styles
+from harness.figures import save_figure
 
 __all__ = ["figures"]
 
@@ -56,11 +57,7 @@ def _finish(fig, ax, path, title):
     ax.set_aspect("equal")
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=6, loc="upper right")
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)[0]
 
 
 def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
@@ -164,7 +161,5 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         ax.set_title(f"Fig. {num.replace('_', '.')}: convergence, {prob} {start or ''}", fontsize=9)
         ax.legend(fontsize=6)
         path = outdir / f"fig_{num}_{prob}{'_' + start if start else ''}_history.png"
-        fig.savefig(path, dpi=120, bbox_inches="tight")
-        plt.close(fig)
-        out.append(path)
+        out += save_figure(fig, path)
     return out

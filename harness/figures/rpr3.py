@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from harness._styles import solver_order, solver_styles
+from harness.figures import save_figure
 
 __all__ = ["figures"]
 
@@ -62,9 +63,7 @@ def _dextrous_figures(outdir: pathlib.Path) -> list[pathlib.Path]:
         ax.legend(fontsize=7)
         ax.set_title(f"Fig. 5.{4 + k}: dextrous workspaces of {name}")
         p = outdir / f"fig_5_{4 + k}_dextrous_{name}.png"
-        fig.savefig(p, dpi=130, bbox_inches="tight")
-        plt.close(fig)
-        paths.append(p)
+        paths += save_figure(fig, p, dpi=130)
     return paths
 
 
@@ -133,9 +132,7 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
             f"{kind.upper()} synthesis start d0 {list(s['start'])}",
         )
         p = outdir / f"fig_{kind}_start.png"
-        fig.savefig(p, dpi=130, bbox_inches="tight")
-        plt.close(fig)
-        paths.append(p)
+        paths += save_figure(fig, p, dpi=130)
         if not len(runs):
             continue
         fig, axes = plt.subplots(1, 3, figsize=(13, 4))
@@ -158,7 +155,5 @@ def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:
         fig2.suptitle(f"{kind.upper()} synthesis convergence histories", fontsize=9)
         for f_, name in ((fig, "optima"), (fig2, "histories")):
             p = outdir / f"fig_{kind}_{name}.png"
-            f_.savefig(p, dpi=130, bbox_inches="tight")
-            plt.close(f_)
-            paths.append(p)
+            paths += save_figure(f_, p, dpi=130)
     return paths

@@ -15,6 +15,8 @@ import pathlib
 import numpy as np
 import pandas as pd
 
+from harness.figures import save_figure
+
 __all__ = ["figures"]
 
 
@@ -96,13 +98,7 @@ def _gs_figure(r: pd.Series, outdir: pathlib.Path) -> list[pathlib.Path]:
 
 
 def _save(fig, outdir: pathlib.Path, stem: str) -> list[pathlib.Path]:
-    import matplotlib.pyplot as plt
-
-    paths = [outdir / f"{stem}.png", outdir / f"{stem}.svg"]
-    fig.savefig(paths[0], dpi=130)
-    fig.savefig(paths[1])
-    plt.close(fig)
-    return paths
+    return save_figure(fig, outdir / f"{stem}.png", dpi=130, tight=False, svg=True)
 
 
 def figures(runs: pd.DataFrame, outdir: pathlib.Path) -> list[pathlib.Path]:

@@ -22,6 +22,8 @@ import pathlib
 import numpy as np
 import pandas as pd
 
+from harness.figures import save_figure
+
 __all__ = ["figures"]
 
 LOADS = ("L1", "L2", "L3")
@@ -55,12 +57,7 @@ def _draw_chord(ax, ws, **kw):
 
 
 def _save(fig, outdir: pathlib.Path, stem: str) -> pathlib.Path:
-    path = outdir / f"{stem}.png"
-    fig.savefig(path, dpi=150, bbox_inches="tight")
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
-    return path
+    return save_figure(fig, outdir / f"{stem}.png", dpi=150)[0]
 
 
 def _grid_of_workspaces(n: int, method: str, outdir: pathlib.Path, stem: str, title: str) -> pathlib.Path:
