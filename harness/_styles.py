@@ -1,15 +1,16 @@
 """One look per solver in every figure: the same colour and line style for a solver in a
 profile, a convergence history and a thesis figure, whatever the order of the stored rows.
 
-* The built-in solvers (`BUILTIN_ORDER`) each own a colour (`COLOURS`); their line style
-  says the family: the thesis's algorithms solid, our extensions dash-dot, the established
-  solvers dashed.
+* The built-in solvers each own a colour (`COLOURS`); the line style says the solver's
+  family (its class's ``family``): the thesis's algorithms solid, our extensions dash-dot,
+  the established solvers dashed.
 * A label with command-line options (``sqsd[rho=0.1]``) keeps its solver's colour and takes
   a dotted or dash pattern of its own.
 * Any other solver (a user's, ``--solver-module``) takes the colours of `PALETTE`, in
   sorted order of the labels drawn together, then repeats them with further dash patterns.
 
-`solver_order` sorts labels in that order, so legends list the solvers alike everywhere.
+`solver_order` sorts labels as the registry lists the solvers (``python -m harness list
+solvers``), so legends list them alike everywhere.
 """
 
 from __future__ import annotations
@@ -17,18 +18,12 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Any
 
-__all__ = ["BUILTIN_ORDER", "COLOURS", "PALETTE", "solver_order", "solver_styles"]
+from solvers import solver_names
+from solvers._registry import get_solver_class
 
-#: the registry's built-in solvers, thesis family first (the order of `python -m harness list solvers`)
-BUILTIN_ORDER: tuple[str, ...] = (
-    "sqsd", "sd", "fletcher-reeves", "polak-ribiere", "lfopc", "dynamic-q", "etopc",
-    "dynamic-q-plus", "multistart",
-    "scipy-cg", "scipy-bfgs", "scipy-lbfgsb", "scipy-slsqp", "scipy-trust-constr", "scipy-cobyla", "ipopt",
-    "nlopt-mma", "nlopt-slsqp",
-)
+__all__ = ["COLOURS", "PALETTE", "solver_order", "solver_styles"]
+
 _FAMILY_STYLE = {"thesis": "-", "own": "-.", "established": "--"}
-_FAMILY = {**dict.fromkeys(BUILTIN_ORDER[:7], "thesis"), **dict.fromkeys(BUILTIN_ORDER[7:9], "own"),
-           **dict.fromkeys(BUILTIN_ORDER[9:], "established")}
 #: each built-in solver's colour (hex: this module needs no matplotlib). The solvers drawn
 #: together most (the constrained ones of hs, hs-all, cutest and the syntheses; the unconstrained
 #: ones of appendix-a) have colours far apart within their group; Dynamic-Q+ is the red line.
@@ -52,32 +47,40 @@ def _base(label: str) -> str:
 
 
 def solver_order(label: str) -> tuple[int, str]:
-    """Sort key: built-in solvers in `BUILTIN_ORDER`, then every other label alphabetically
-    (an option variant right after its solver)."""
+    """Sort key: registered solvers in the registry's order, then every other label
+    alphabetically (an option variant right after its solver)."""
+    names = solver_names()
     base = _base(label)
-    return (BUILTIN_ORDER.index(base) if base in BUILTIN_ORDER else len(BUILTIN_ORDER), label)
+    return (names.index(base) if base in names else len(names), label)
+
+
+def _family_style(name: str) -> str:
+    try:
+        return _FAMILY_STYLE.get(get_solver_class(name).family, "-")
+    except KeyError:  # runs of a solver not registered in this process
+        return "-"
 
 
 def solver_styles(labels: Iterable[str]) -> dict[str, dict[str, Any]]:
     """``{label: {"color": ..., "linestyle": ...}}`` for the labels drawn together.
 
     A built-in solver's style depends on its name only; a variant's on the variants drawn
-    with it; a user's solver's on the other user solvers drawn with it (its colour is the
-    next unused one in sorted order).
+    with it; another solver's on the other such solvers drawn with it (its colour is the
+    next unused one of `PALETTE` in sorted order).
     """
-    free = PALETTE
     look: dict[str, tuple[str, Any]] = {}  # solver -> (colour, line style)
+    n_other = 0
     n_variants: dict[str, int] = {}
     styles: dict[str, dict[str, Any]] = {}
     for lab in sorted(set(labels), key=solver_order):
         base = _base(lab)
         if base not in look:
-            if base in BUILTIN_ORDER:
-                look[base] = (COLOURS[base], _FAMILY_STYLE[_FAMILY[base]])
+            if base in COLOURS:
+                look[base] = (COLOURS[base], _family_style(base))
             else:  # the next free colour; once all are used, again with a dash pattern
-                k = sum(b not in BUILTIN_ORDER for b in look)
-                rounds = k // len(free)
-                look[base] = (free[k % len(free)], "-" if rounds == 0 else _PATTERNS[(rounds - 1) % len(_PATTERNS)])
+                rounds, k = divmod(n_other, len(PALETTE))
+                look[base] = (PALETTE[k], "-" if rounds == 0 else _PATTERNS[(rounds - 1) % len(_PATTERNS)])
+                n_other += 1
         color, style = look[base]
         if lab != base:  # an option variant: its solver's colour, a pattern of its own
             style = _PATTERNS[n_variants.get(base, 0) % len(_PATTERNS)]
