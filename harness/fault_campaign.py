@@ -28,6 +28,7 @@ Exit status 0 when every scenario ends equal to the clean run, 1 otherwise, 2 on
 from __future__ import annotations
 
 import argparse
+import functools
 import os
 import pathlib
 import random
@@ -46,7 +47,8 @@ from ._store import IDENTITY, Store
 DEFAULT_PROBLEMS = "hs010,hs014,hs022,hs024,hs029,hs031,hs045,hs065,hs071,hs076"
 COUNTS = ["nfg", "nf", "ng", "status"]
 SCENARIOS = ("kill-harness", "kill-worker", "sigint", "concurrent", "truncated", "kill-dask-worker")
-NOT_INJECTED = "no "  # how a fault that found nothing to kill begins its message
+#: a fault: interrupts the harness process given, returns (injected, what it did)
+Fault = Callable[[subprocess.Popen[bytes]], tuple[bool, str]]
 
 
 def _harness(*args: str) -> list[str]:
@@ -108,37 +110,36 @@ class Campaign:
         return self.rng.uniform(0.1, 0.9) * self.clean_time
 
     # ------------------------------------------------------------------ scenarios
-    def _interrupted(self, name: str, fault: Callable[[subprocess.Popen[bytes]], str], *extra: str) -> None:
+    def _interrupted(self, name: str, fault: Fault, *extra: str) -> None:
         out = self.out / name
         shutil.rmtree(out, ignore_errors=True)
         proc = subprocess.Popen(self.run_args(out, *extra), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         at = self.moment()
         time.sleep(at)
         # a run that has already ended leaves nothing to interrupt
-        what = fault(proc) if proc.poll() is None else f"{NOT_INJECTED}fault: the run had ended"
+        injected, what = fault(proc) if proc.poll() is None else (False, "no fault: the run had ended")
         proc.wait(timeout=600)
         before = len(Store(out, self.suite).load()) if Store(out, self.suite).exists() else 0
         self.plain_run(out)
-        self.check(name, out, f"{what} at {at:.1f} s; {before} runs stored before the re-run",
-                   injected=not what.startswith(NOT_INJECTED))
+        self.check(name, out, f"{what} at {at:.1f} s; {before} runs stored before the re-run", injected)
 
     def kill_harness(self, i: int) -> None:
-        def fault(proc: subprocess.Popen[bytes]) -> str:
+        def fault(proc: subprocess.Popen[bytes]) -> tuple[bool, str]:
             proc.send_signal(signal.SIGKILL)
-            return "SIGKILL of the harness"
+            return True, "SIGKILL of the harness"
         self._interrupted(f"kill-harness-{i}", fault)
 
     def _kill_one(self, proc: subprocess.Popen[bytes], pick: Callable[[list[int]], list[int]], what: str,
-                  tries: int, pause: float) -> str:
+                  tries: int, pause: float) -> tuple[bool, str]:
         """SIGKILL one process, chosen at random among ``pick(descendants of proc)``, polling until there is one."""
         for _ in range(tries):
             victims = pick(_descendants(proc.pid))
             if victims:
                 victim = self.rng.choice(victims)
                 os.kill(victim, signal.SIGKILL)
-                return f"SIGKILL of {what} {victim}"
+                return True, f"SIGKILL of {what} {victim}"
             time.sleep(pause)
-        return f"{NOT_INJECTED}{what} found to kill"
+        return False, f"no {what} found to kill"
 
     def kill_worker(self, i: int) -> None:
         def workers(kids: list[int]) -> list[int]:
@@ -146,9 +147,9 @@ class Campaign:
         self._interrupted(f"kill-worker-{i}", lambda proc: self._kill_one(proc, workers, "worker", 50, 0.05))
 
     def sigint(self) -> None:
-        def fault(proc: subprocess.Popen[bytes]) -> str:
+        def fault(proc: subprocess.Popen[bytes]) -> tuple[bool, str]:
             proc.send_signal(signal.SIGINT)
-            return "SIGINT of the harness"
+            return True, "SIGINT of the harness"
         self._interrupted("sigint", fault)
 
     def kill_dask_worker(self) -> None:
@@ -238,14 +239,18 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     print(f"clean run: {len(runs)} runs in {c.clean_time:.1f} s", flush=True)
+    # the kills of the harness and of a worker at three random moments each; the others once
+    scenarios: dict[str, list[Callable[[], None]]] = {
+        "kill-harness": [functools.partial(c.kill_harness, i) for i in range(1, 4)],
+        "kill-worker": [functools.partial(c.kill_worker, i) for i in range(1, 4)],
+        "sigint": [c.sigint], "concurrent": [c.concurrent], "truncated": [c.truncated],
+        "kill-dask-worker": [c.kill_dask_worker],
+    }
+    assert tuple(scenarios) == SCENARIOS
     for name in SCENARIOS:  # in this order, whatever the order given
-        if name not in chosen:
-            continue
-        if name in ("kill-harness", "kill-worker"):  # three random moments each
-            for i in range(1, 4):
-                getattr(c, name.replace("-", "_"))(i)
-        else:
-            getattr(c, name.replace("-", "_"))()
+        if name in chosen:
+            for run in scenarios[name]:
+                run()
     table = pd.DataFrame(c.results)
     report = pathlib.Path(a.out) / "fault_campaign.md"
     report.write_text(f"Fault campaign on suite {a.suite}, problems {a.problems} (clean run {len(runs)} runs, "
