@@ -62,7 +62,8 @@ def tables(runs: pd.DataFrame) -> list[Table]:
         name="table_4_7s",
         title=f"Table 4.7s: O and E synthesis ends from SP1-SP4 and from starts within {EPS:g} of them",
         frame=frame, flags=None,
-        notes=[f"Each row: one solver (Dynamic-Q, the thesis's algorithm; Dynamic-Q+, our extension) with suite "
+        notes=[f"Each row: one solver (Dynamic-Q, the thesis's algorithm; Dynamic-Q+, our extension; SciPy's SLSQP, "
+               "an established SQP method, capped as in suite rpr2 at 40 iterations in E and 100 in O) with suite "
                "rpr2's settings (O: Tables 4.3-4.6, E: Table 4.7) from the thesis start and from starts that "
                f"differ from it by at most {EPS:g} in every component (seeded uniform; "
                "manipulators.synthesis.rpr2_spread_suite). 'thesis f*' is the thesis's Dynamic-Q value.",
@@ -70,7 +71,7 @@ def tables(runs: pd.DataFrame) -> list[Table]:
                "A row whose f* spread is far wider than its tolerance is a cell no implementation can pin: the "
                "end depends on the start below the precision to which the thesis prints it. A row whose thesis "
                "value lies outside the spread is not reproduced by our Dynamic-Q at all, whatever the start.",
-               "Regenerate: python -m harness run --suite rpr2-spread (about 9 minutes on 2 cores)."])]
+               "Regenerate: python -m harness run --suite rpr2-spread (under 20 minutes on 2 cores)."])]
 
 
 #: what the columns 'within tolerance' and 'f* <= 3.2, dW_p <= 0.01' test (also Table 4.7c's)

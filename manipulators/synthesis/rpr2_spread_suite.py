@@ -2,8 +2,8 @@
 
 Table 4.7 (E synthesis) is not reproduced from SP1, SP3, SP4, while Tables 4.3-4.6
 (O synthesis) are.  Section 4.6.2 calls the E runs "slow and erratic"; this suite
-measures how erratic: Dynamic-Q and Dynamic-Q+, with exactly the settings of suite
-``rpr2`` (`rpr2_suite._caps`), run O and E synthesis from each thesis start SP1-SP4 and
+measures how erratic: Dynamic-Q, Dynamic-Q+ and SciPy's SLSQP, with exactly the settings of
+suite ``rpr2`` (`rpr2_suite._caps`), run O and E synthesis from each thesis start SP1-SP4 and
 from ``N_PERTURBED`` starts that differ from it by at most ``EPS`` in every component
 (`_spread.perturbed`; the thesis prints its starts to three decimals at most).  A cell
 whose ends spread far beyond its tolerance under such changes cannot be pinned by any
@@ -11,7 +11,7 @@ implementation; a cell whose ends stay together can.
 
 Cases are ordinary `Case`s of the same problems (`rpr2_suite.o_problem`,
 `rpr2_suite.e_problem`) with start labels ``SP1``, ``SP1~1`` ... ``SP1~10``; the table
-plug-in ``harness.tables.rpr2_spread`` summarizes them.  About 9 minutes on 2 cores.
+plug-in ``harness.tables.rpr2_spread`` summarizes them.  About 12 minutes on 2 cores.
 """
 
 from __future__ import annotations
@@ -57,10 +57,10 @@ def _build() -> list[Case]:
 
 SUITE = Suite(
     name="rpr2-spread",
-    description=(f"2-RPR O and E synthesis by Dynamic-Q and Dynamic-Q+ from SP1-SP4 and {N_PERTURBED} starts "
+    description=(f"2-RPR O and E synthesis by Dynamic-Q, Dynamic-Q+ and SLSQP from SP1-SP4 and {N_PERTURBED} starts "
                  f"within {EPS:g} of each: how much the thesis's cells depend on the start (Tables 4.3-4.7)"),
     build=_build,
-    solvers=("dynamic-q", "dynamic-q-plus"),
+    solvers=("dynamic-q", "dynamic-q-plus", "scipy-slsqp"),
     tables="harness.tables.rpr2_spread",
     figures="harness.figures.rpr2_spread",
 )

@@ -1,4 +1,4 @@
-"""Suite rpr2-spread (Dynamic-Q and Dynamic-Q+ from starts within 1e-6 of SP1-SP4) and its table plug-in."""
+"""Suite rpr2-spread (Dynamic-Q, Dynamic-Q+ and SLSQP from starts within 1e-6 of SP1-SP4) and its table plug-in."""
 
 import json
 
@@ -15,7 +15,7 @@ from problems import get_suite
 
 def test_suite_is_registered_and_has_every_start_and_copy():
     suite = get_suite("rpr2-spread")
-    assert suite.solvers == ("dynamic-q", "dynamic-q-plus")
+    assert suite.solvers == ("dynamic-q", "dynamic-q-plus", "scipy-slsqp")
     cases = suite.cases()
     assert len(cases) == 2 * len(STARTS) * (S.N_PERTURBED + 1)
     assert {c.problem_id for c in cases} == {"rpr2-o", "rpr2-e"}
