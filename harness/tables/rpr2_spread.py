@@ -56,14 +56,17 @@ def _solver_order(solver: str) -> tuple[int, str]:
 
 def tables(runs: pd.DataFrame) -> list[Table]:
     from manipulators.synthesis.rpr2_spread_suite import EPS
+    from manipulators.synthesis.rpr2_suite import _caps
 
+    cap = {k: _caps(k)["scipy-slsqp"]["maxiter"] for k in ("e", "o")}  # the caps the runs had, not a copy
     frame = pd.DataFrame(spread_rows(runs))
     return [Table(
         name="table_4_7s",
         title=f"Table 4.7s: O and E synthesis ends from SP1-SP4 and from starts within {EPS:g} of them",
         frame=frame, flags=None,
         notes=[f"Each row: one solver (Dynamic-Q, the thesis's algorithm; Dynamic-Q+, our extension; SciPy's SLSQP, "
-               "an established SQP method, capped as in suite rpr2 at 40 iterations in E and 100 in O) with suite "
+               f"an established SQP method, capped as in suite rpr2 at {cap['e']} iterations in E and {cap['o']} in O) "
+               "with suite "
                "rpr2's settings (O: Tables 4.3-4.6, E: Table 4.7) from the thesis start and from starts that "
                f"differ from it by at most {EPS:g} in every component (seeded uniform; "
                "manipulators.synthesis.rpr2_spread_suite). 'thesis f*' is the thesis's Dynamic-Q value.",
